@@ -1,0 +1,126 @@
+#include "commands.hpp"
+
+#include "run_verification.hpp"
+
+#include "basis/reference_basis.hpp"
+#include "quadrature/rule_library.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+namespace hofem::cli {
+
+namespace {
+
+CellType parse_cell_or_throw(const std::string& text) {
+  const auto cell = parse_cell(text);
+  if (!cell) throw UsageError(fmt::format("--cell: unknown cell '{}' (valid: {})", text, cell_choices()));
+  return *cell;
+}
+
+nlohmann::json rule_json(const QuadratureRule& r) {
+  nlohmann::json pts = nlohmann::json::array();
+  for (int q = 0; q < r.size(); ++q) {
+    nlohmann::json p = nlohmann::json::array();
+    for (int c = 0; c < r.dim(); ++c) p.push_back(r.points(c, q));
+    pts.push_back(p);
+  }
+  return {{"cell", std::string(name(r.cell))},
+          {"degree", r.degree},
+          {"id", r.id},
+          {"source", r.source},
+          {"points", pts},
+          {"weights", std::vector<double>(r.weights.data(), r.weights.data() + r.size())}};
+}
+
+void print_rule_table(const QuadratureRule& r) {
+  fmt::print("cell     {}\ndegree   {}\nrule     {}\nsource   {}\npoints   {}\nmin weight {:.3e}   min margin {:.3e}\n\n",
+             name(r.cell), r.degree, r.id, r.source, r.size(), r.min_weight(), r.min_interior_margin());
+  fmt::print("{:>5}", "#");
+  for (int c = 0; c < r.dim(); ++c) fmt::print(" {:>24}", std::string(1, "xyz"[c]));
+  fmt::print(" {:>24}\n", "weight");
+  for (int q = 0; q < r.size(); ++q) {
+    fmt::print("{:>5}", q);
+    for (int c = 0; c < r.dim(); ++c) fmt::print(" {:>24.17g}", r.points(c, q));
+    fmt::print(" {:>24.17g}\n", r.weights[q]);
+  }
+}
+
+}  // namespace
+
+int run_quadrature(const QuadratureOptions& o) {
+  const CellType cell = parse_cell_or_throw(o.cell);
+  if (o.list) {
+    const auto& rules = tabulated_rules(cell);
+    if (rules.empty()) {
+      fmt::print("{}: no tabulated rules; tensor Gauss–Legendre rules of any degree are built on demand\n", name(cell));
+      return 0;
+    }
+    fmt::print("{:<16} {:>6} {:>6} {:>8} {:>12} {:>12}  {}\n", "rule", "degree", "points", "quality", "min weight", "min margin", "source");
+    for (const auto& r : rules)
+      fmt::print("{:<16} {:>6} {:>6} {:>8} {:>12.3e} {:>12.3e}  {}\n", r.id, r.degree, r.size(),
+                 r.positive_interior() ? "PI" : (r.all_weights_positive() ? "P-bdry" : "neg"), r.min_weight(),
+                 r.min_interior_margin(), r.source);
+    return 0;
+  }
+  if (o.degree == kUnset) throw UsageError("--degree is required (or use --list)");
+  if (o.degree < 0) throw UsageError(fmt::format("--degree must be >= 0, got {}", o.degree));
+  const QuadratureRule& r = quadrature_rule(cell, o.degree);
+  if (o.json) fmt::print("{}\n", rule_json(r).dump());
+  else print_rule_table(r);
+  return 0;
+}
+
+int run_basis(const BasisOptions& o) {
+  const CellType cell = parse_cell_or_throw(o.cell);
+  if (o.order < 1) throw UsageError(fmt::format("--order must be >= 1, got {}", o.order));
+  if (cell == CellType::Quadrilateral) throw UsageError("--cell: no Lagrange basis on quad yet (valid: segment, triangle, tet, hex)");
+  if (cell == CellType::Hexahedron && o.order > 2) throw UsageError(fmt::format("--order: hex supports 1 (Hex8) or 2 (Hex20), got {}", o.order));
+  const ReferenceBasis& b = lagrange_basis(cell, o.order);
+  if (o.json) {
+    nlohmann::json nodes = nlohmann::json::array();
+    for (int i = 0; i < b.size(); ++i) {
+      nlohmann::json p = nlohmann::json::array();
+      for (int c = 0; c < b.dim(); ++c) p.push_back(b.nodes()(c, i));
+      nodes.push_back(p);
+    }
+    fmt::print("{}\n", nlohmann::json{{"element", b.element_name()}, {"cell", std::string(name(cell))}, {"order", b.order()}, {"nodes", nodes}}.dump());
+    return 0;
+  }
+  fmt::print("{} ({} nodes, Gmsh order, reference coordinates)\n", b.element_name(), b.size());
+  for (int i = 0; i < b.size(); ++i) {
+    fmt::print("{:>4}", i);
+    for (int c = 0; c < b.dim(); ++c) fmt::print(" {:>10.6f}", b.nodes()(c, i));
+    fmt::print("\n");
+  }
+  return 0;
+}
+
+int run_verify(const VerifyOptions& o) {
+  verification::Report report = verification::run_all_checks();
+  nlohmann::json j = report.to_json();
+  if (!o.group.empty()) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const auto& r : j["rows"])
+      if (r["group"].get<std::string>().starts_with(o.group)) rows.push_back(r);
+    j["rows"] = rows;
+  }
+  const std::filesystem::path out(o.out);
+  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
+  std::ofstream f(out);
+  if (!f) throw std::runtime_error(fmt::format("cannot write '{}'", o.out));
+  f << j.dump(1) << '\n';
+  if (!o.quiet) {
+    fmt::print("{}", report.summary_table());
+    for (const auto& r : report.rows())
+      if (!r.pass) fmt::print("FAILED {} | {}: measured {:.3e}, threshold {} {:.3e}\n", r.group, r.name, r.measured,
+                              r.compare == verification::Compare::AtMost ? "<=" : ">=", r.threshold);
+  }
+  fmt::print("verification: {} checks, {} failed -> {}\n", report.rows().size(), report.failures(), o.out);
+  return report.failures() == 0 ? 0 : 1;
+}
+
+}  // namespace hofem::cli

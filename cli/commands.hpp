@@ -1,0 +1,39 @@
+#pragma once
+// The work behind each `hofem` subcommand, separate from argument parsing.
+#include <stdexcept>
+#include <string>
+
+namespace hofem::cli {
+
+/// Invalid user input detected after parsing (unknown cell name, ...): exit status 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Sentinel for "option not given".
+inline constexpr int kUnset = -1000000;
+
+struct QuadratureOptions {
+  std::string cell;
+  int degree = kUnset;
+  bool json = false;
+  bool list = false;
+};
+int run_quadrature(const QuadratureOptions& o);
+
+struct BasisOptions {
+  std::string cell;
+  int order = 1;
+  bool json = false;
+};
+int run_basis(const BasisOptions& o);
+
+struct VerifyOptions {
+  std::string out = "reports/verification.json";
+  std::string group;
+  bool quiet = false;
+};
+int run_verify(const VerifyOptions& o);
+
+}  // namespace hofem::cli

@@ -1,0 +1,78 @@
+// hofem command-line interface: one subcommand per task, `--help` on each.
+//
+//   hofem quadrature --cell tet --degree 8 [--json]   the rule a query returns
+//   hofem quadrature --cell tet --list                every tabulated rule of a cell
+//   hofem basis --cell tet --order 3 [--json]         Lagrange nodes in Gmsh order
+//   hofem verify [--out reports/verification.json]    the verification suite
+//
+// Bad arguments print one line, "hofem: error: ...", and exit with status 2;
+// failed verification exits with status 1.
+#include "commands.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+
+int main(int argc, char** argv) {
+  CLI::App app{"hofem: verification and benchmark harness for high-order FEM of deformable solids"};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "Help for every subcommand");
+
+  hofem::cli::QuadratureOptions qo;
+  auto* quad = app.add_subcommand("quadrature", "Print the quadrature rule for a cell and degree");
+  quad->add_option("--cell", qo.cell, "segment, triangle, tet, quad or hex")->required();
+  quad->add_option("--degree", qo.degree, "Degree of exactness wanted (>= 0)");
+  quad->add_flag("--json", qo.json, "Print JSON {cell, degree, source, points, weights}");
+  quad->add_flag("--list", qo.list, "List every tabulated rule of the cell instead");
+
+  hofem::cli::BasisOptions bo;
+  auto* basis = app.add_subcommand("basis", "Print the nodes of a Lagrange element (Gmsh order)");
+  basis->add_option("--cell", bo.cell, "segment, triangle, tet or hex")->required();
+  basis->add_option("--order", bo.order, "Polynomial order (>= 1; hex: 1 = Hex8, 2 = Hex20)")->required();
+  basis->add_flag("--json", bo.json, "Print JSON");
+
+  hofem::cli::VerifyOptions vo;
+  auto* verify = app.add_subcommand("verify", "Run the verification suite and write its JSON report");
+  verify->add_option("--out", vo.out, "Report path")->capture_default_str();
+  verify->add_option("--group", vo.group, "Only report rows whose group starts with this prefix");
+  verify->add_flag("--quiet", vo.quiet, "Print only the summary line");
+
+  // CLI11 reports an unknown first word as "a subcommand is required"; name it instead.
+  if (argc > 1 && argv[1][0] != '-') {
+    const std::string first = argv[1];
+    bool known = false;
+    for (const auto* sub : app.get_subcommands({})) known = known || sub->get_name() == first;
+    if (!known) {
+      fmt::print(stderr, "hofem: error: unknown subcommand '{}' (valid: quadrature, basis, verify)\n", first);
+      return 2;
+    }
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::string what = e.what();
+    if (what.empty()) what = e.get_name();
+    fmt::print(stderr, "hofem: error: {} (run 'hofem --help')\n", what);
+    return 2;
+  }
+
+  try {
+    if (*quad) return hofem::cli::run_quadrature(qo);
+    if (*basis) return hofem::cli::run_basis(bo);
+    if (*verify) return hofem::cli::run_verify(vo);
+  } catch (const hofem::cli::UsageError& e) {
+    fmt::print(stderr, "hofem: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "hofem: error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

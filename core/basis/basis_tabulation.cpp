@@ -1,0 +1,42 @@
+#include "basis/basis_tabulation.hpp"
+
+#include "quadrature/rule_library.hpp"
+
+#include <fmt/format.h>
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <tuple>
+
+namespace hofem {
+
+BasisTabulation tabulate(const ReferenceBasis& basis, const QuadratureRule& rule) {
+  if (basis.cell() != rule.cell)
+    throw std::invalid_argument(fmt::format("tabulate: basis on {} but rule on {}", name(basis.cell()), name(rule.cell)));
+  BasisTabulation t;
+  t.num_points = rule.size();
+  t.num_basis = basis.size();
+  t.dim = basis.dim();
+  t.values.resize(t.num_basis, t.num_points);
+  t.gradients.resize(t.num_basis, static_cast<Eigen::Index>(t.dim) * t.num_points);
+  for (int q = 0; q < t.num_points; ++q) {
+    basis.evaluate(rule.points.col(q), t.values.col(q));
+    basis.gradients(rule.points.col(q), t.gradients.middleCols(static_cast<Eigen::Index>(t.dim) * q, t.dim));
+  }
+  return t;
+}
+
+const BasisTabulation& cached_tabulation(CellType cell, int order, int quadrature_degree) {
+  static std::mutex mutex;
+  static std::map<std::tuple<int, int, int>, std::unique_ptr<BasisTabulation>> cache;
+  const ReferenceBasis& basis = lagrange_basis(cell, order);
+  const QuadratureRule& rule = quadrature_rule(cell, quadrature_degree);
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = cache[{static_cast<int>(cell), order, quadrature_degree}];
+  if (!slot) slot = std::make_unique<BasisTabulation>(tabulate(basis, rule));
+  return *slot;
+}
+
+}  // namespace hofem

@@ -1,0 +1,39 @@
+#pragma once
+// One row per check: what was measured, the threshold it is held to, and the
+// verdict. Rows are grouped ("quadrature.exactness", "basis.kronecker", ...);
+// the report serialises to reports/verification.json.
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace hofem::verification {
+
+enum class Compare { AtMost, AtLeast };
+
+struct CheckRow {
+  std::string group;      ///< e.g. "quadrature.exactness"
+  std::string name;       ///< what was checked, e.g. "tet WV15-8-46"
+  double measured = 0.0;  ///< the measured value
+  double threshold = 0.0; ///< the bound it is held to
+  Compare compare = Compare::AtMost;
+  bool pass = false;
+  std::string why;        ///< justification of the threshold / extra facts
+};
+
+class Report {
+ public:
+  /// Adds a row; pass = measured <= threshold (AtMost) or >= (AtLeast). NaN fails.
+  const CheckRow& check(std::string group, std::string name, double measured, double threshold, Compare compare,
+                        std::string why = {});
+  const std::vector<CheckRow>& rows() const { return rows_; }
+  int failures() const;
+  nlohmann::json to_json() const;
+  /// Short per-group table (rows, failures, worst margin) for terminals.
+  std::string summary_table() const;
+
+ private:
+  std::vector<CheckRow> rows_;
+};
+
+}  // namespace hofem::verification

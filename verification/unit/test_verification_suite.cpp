@@ -1,0 +1,35 @@
+// The whole table-driven verification suite, as a test: any failing row fails,
+// and the failing rows are printed with their measured values.
+#include "run_verification.hpp"
+
+#include <gtest/gtest.h>
+
+namespace hofem::verification {
+namespace {
+
+TEST(VerificationSuite, EveryCheckPasses) {
+  const Report report = run_all_checks();
+  EXPECT_GT(report.rows().size(), 1000u);
+  for (const CheckRow& r : report.rows())
+    EXPECT_TRUE(r.pass) << r.group << " | " << r.name << ": measured " << r.measured << ", threshold "
+                        << (r.compare == Compare::AtMost ? "<= " : ">= ") << r.threshold;
+  EXPECT_EQ(report.failures(), 0);
+}
+
+// The report machinery itself: a failing row is reported as failing, NaN fails,
+// and the JSON summary counts it.
+TEST(VerificationReport, CountsFailuresAndRejectsNaN) {
+  Report r;
+  r.check("g", "ok", 1.0, 2.0, Compare::AtMost);
+  r.check("g", "too big", 3.0, 2.0, Compare::AtMost);
+  r.check("g", "nan", std::nan(""), 2.0, Compare::AtMost);
+  r.check("h", "at least", 1.0, 2.0, Compare::AtLeast);
+  EXPECT_EQ(r.failures(), 3);
+  const auto j = r.to_json();
+  EXPECT_EQ(j["summary"]["failed"], 3);
+  EXPECT_EQ(j["summary"]["groups"]["g"]["failed"], 2);
+  EXPECT_TRUE(j["rows"][2]["measured"].is_string());
+}
+
+}  // namespace
+}  // namespace hofem::verification
