@@ -51,8 +51,10 @@ SimplexLagrangeBasis::SimplexLagrangeBasis(CellType cell, int order)
     V.row(i) = row.transpose();
   }
   coefficients_ = V.partialPivLu().inverse();
-  vandermonde_condition_ = condition_number(V);
+  vandermonde_ = std::move(V);
 }
+
+double SimplexLagrangeBasis::vandermonde_condition() const { return condition_number(vandermonde_); }
 
 std::string SimplexLagrangeBasis::element_name() const {
   const char* stem = cell_ == CellType::Segment ? "Line" : cell_ == CellType::Triangle ? "Tri" : "Tet";

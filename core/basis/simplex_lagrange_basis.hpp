@@ -25,15 +25,16 @@ class SimplexLagrangeBasis final : public ReferenceBasis {
   void evaluate(const Eigen::Ref<const Eigen::VectorXd>& xi, Eigen::Ref<Eigen::VectorXd> values) const override;
   void gradients(const Eigen::Ref<const Eigen::VectorXd>& xi, Eigen::Ref<Eigen::MatrixXd> grads) const override;
 
-  /// 2-norm condition number of the Vandermonde matrix V (orthonormal basis).
-  double vandermonde_condition() const { return vandermonde_condition_; }
+  /// 2-norm condition number of the Vandermonde matrix V (orthonormal basis);
+  /// computed on request (an SVD), not when the basis is built.
+  double vandermonde_condition() const;
 
  private:
   CellType cell_;
   int order_;
   OrthonormalSimplexBasis psi_;
   Eigen::MatrixXd coefficients_;  // C = V^{-1}: N_i = sum_m C(m, i) psi_m
-  double vandermonde_condition_ = 0.0;
+  Eigen::MatrixXd vandermonde_;   // kept for vandermonde_condition()
 };
 
 /// 2-norm condition number of the *monomial* Vandermonde matrix of the thesis

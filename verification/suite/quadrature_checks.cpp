@@ -144,6 +144,9 @@ void add_query_checks(Report& report) {
       report.check("quadrature.query", label + " degree", r.degree, degree, Compare::AtLeast, "exact to at least the requested degree");
       report.check("quadrature.query", label + " positive-interior", r.positive_interior() ? 1.0 : 0.0, 1.0,
                    Compare::AtLeast, "query returns positive weights and interior points");
+      report.measure("quadrature.points_query", fmt::format("{} {}", name(cell), degree), r.size(), r.id);
+      report.measure("quadrature.points_collapsed", fmt::format("{} {}", name(cell), degree),
+                     gauss_collapsed(cell, degree).size(), "Stroud conical product rule of the same degree");
       if (degree <= 20) {
         const int best = cell == CellType::Triangle ? kTriangleSymmetric[degree] : kTetSymmetric[degree];
         report.check("quadrature.query", label + " points", r.size(), best, Compare::AtMost,

@@ -15,6 +15,10 @@ const CheckRow& Report::check(std::string group, std::string name, double measur
   return rows_.back();
 }
 
+void Report::measure(std::string group, std::string name, double value, std::string what) {
+  measurements_.push_back({std::move(group), std::move(name), std::move(what), value});
+}
+
 int Report::failures() const {
   int f = 0;
   for (const auto& r : rows_) f += r.pass ? 0 : 1;
@@ -40,9 +44,13 @@ nlohmann::json Report::to_json() const {
   }
   nlohmann::json by_group = nlohmann::json::object();
   for (const auto& [name, c] : groups) by_group[name] = {{"checks", c.first}, {"failed", c.second}};
+  nlohmann::json measurements = nlohmann::json::array();
+  for (const auto& m : measurements_)
+    measurements.push_back({{"group", m.group}, {"name", m.name}, {"value", m.value}, {"what", m.what}});
   return {{"summary", {{"checks", rows_.size()}, {"passed", static_cast<int>(rows_.size()) - failures()},
                        {"failed", failures()}, {"groups", by_group}}},
-          {"rows", rows}};
+          {"rows", rows},
+          {"measurements", measurements}};
 }
 
 std::string Report::summary_table() const {

@@ -26,6 +26,9 @@ class Report {
   /// Adds a row; pass = measured <= threshold (AtMost) or >= (AtLeast). NaN fails.
   const CheckRow& check(std::string group, std::string name, double measured, double threshold, Compare compare,
                         std::string why = {});
+  /// Records a measured fact that has no pass/fail verdict (e.g. the condition
+  /// number of the thesis' monomial Vandermonde, shown beside a checked quantity).
+  void measure(std::string group, std::string name, double value, std::string what = {});
   const std::vector<CheckRow>& rows() const { return rows_; }
   int failures() const;
   nlohmann::json to_json() const;
@@ -34,6 +37,11 @@ class Report {
 
  private:
   std::vector<CheckRow> rows_;
+  struct Measurement {
+    std::string group, name, what;
+    double value;
+  };
+  std::vector<Measurement> measurements_;
 };
 
 }  // namespace hofem::verification

@@ -1,0 +1,190 @@
+#!/usr/bin/python3
+"""Turns reports/verification.json and reports/benchmarks.json into PNG plots and
+prints a short summary table. Run with Debian's interpreter (python3-numpy,
+python3-matplotlib): /usr/bin/python3 scripts/plot_reports.py reports
+"""
+import json
+import math
+import re
+import sys
+from pathlib import Path
+
+try:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+except ImportError as e:  # pragma: no cover - environment problem, say what is missing
+    sys.exit(f"plot_reports: {e}; install the Debian packages python3-numpy python3-matplotlib "
+             f"and run with /usr/bin/python3")
+
+RULE_NAME = re.compile(r"^(\w+) (\S+) \(n=(\d+), degree (\d+)\)$")
+
+
+def load(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except FileNotFoundError:
+        sys.exit(f"plot_reports: {path} not found (run scripts/run first)")
+    except json.JSONDecodeError as e:
+        sys.exit(f"plot_reports: {path}: invalid JSON at line {e.lineno}: {e.msg}")
+
+
+def measurements(report, group):
+    return [m for m in report.get("measurements", []) if m["group"] == group]
+
+
+def family(rule_id):
+    for prefix, fam in (("gauss-legendre", "Gauss-Legendre"), ("gauss-tensor", "tensor Gauss"),
+                        ("collapsed", "collapsed Gauss"), ("hammer", "Hammer (thesis)")):
+        if rule_id.startswith(prefix):
+            return fam
+    return rule_id.split("-")[0]  # published source: WV15, CCGV22, Pap16, ...
+
+
+def plot_points(report, out):
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    for ax, cell, dim in zip(axes, ("triangle", "tet"), (2, 3)):
+        q = sorted((int(m["name"].split()[1]), m["value"]) for m in measurements(report, "quadrature.points_query")
+                   if m["name"].startswith(cell + " "))
+        c = sorted((int(m["name"].split()[1]), m["value"]) for m in measurements(report, "quadrature.points_collapsed")
+                   if m["name"].startswith(cell + " "))
+        deg = np.array([d for d, _ in q])
+        ax.semilogy(deg, [v for _, v in c], "s--", color="0.5", label="collapsed Gauss (Stroud)")
+        ax.semilogy(deg, [v for _, v in q], "o-", label="hofem query (fewest positive-interior)")
+        # Lower bound N >= dim P_floor(p/2) (Cools 1997).
+        k = deg // 2
+        bound = [math.comb(int(kk) + dim, dim) for kk in k]
+        ax.semilogy(deg, bound, ":", color="k", label="lower bound dim P_{p/2}")
+        ax.set_title(f"{cell}: quadrature points vs degree")
+        ax.set_xlabel("degree of exactness p")
+        ax.set_ylabel("points")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+
+
+def plot_exactness(report, out):
+    rows = [r for r in report["rows"] if r["group"] == "quadrature.exactness"]
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    by_family = {}
+    threshold = None
+    for r in rows:
+        m = RULE_NAME.match(r["name"])
+        if not m:
+            continue
+        cell, rid, _, deg = m.groups()
+        key = f"{cell}: {family(rid)}"
+        by_family.setdefault(key, ([], []))
+        by_family[key][0].append(int(deg))
+        by_family[key][1].append(max(float(r["measured"]), 1e-18))
+        threshold = r["threshold"]
+    colours = plt.get_cmap("tab20").colors
+    markers = "os^Dv<>p*hX"
+    for i, (key, (d, e)) in enumerate(sorted(by_family.items())):
+        ax.semilogy(d, e, markers[i % len(markers)], ms=4, color=colours[i % len(colours)], label=key)
+    if threshold:
+        ax.axhline(threshold, color="r", ls="--", label=f"threshold {threshold:g}")
+    ax.set_xlabel("degree of exactness")
+    ax.set_ylabel("max relative monomial error")
+    ax.set_title("Quadrature exactness: every rule, every monomial up to its degree")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6, ncol=2)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+
+
+def plot_conditioning(report, out):
+    ortho = {r["name"]: r["measured"] for r in report["rows"] if r["group"] == "basis.vandermonde_condition"}
+    mono = {m["name"]: m["value"] for m in measurements(report, "basis.vandermonde_condition_monomial")}
+    fig, ax = plt.subplots(figsize=(6.5, 4.2))
+    for cell, marker in (("triangle", "o"), ("tet", "s")):
+        names = sorted((n for n in ortho if n.startswith(cell + " ")), key=lambda n: int(n.split()[-1]))
+        p = [int(n.split()[-1]) for n in names]
+        ax.semilogy(p, [ortho[n] for n in names], marker + "-", label=f"{cell}: orthonormal (Dubiner)")
+        ax.semilogy(p, [mono.get(n, float("nan")) for n in names], marker + "--", label=f"{cell}: monomial (thesis 4.28)")
+    ax.set_xlabel("Lagrange order p")
+    ax.set_ylabel("cond_2 of the Vandermonde matrix")
+    ax.set_title("Why the basis is built over orthonormal polynomials")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+
+
+def bench_medians(bench):
+    """name -> (median real time, unit, counters) from aggregate (or plain) entries."""
+    out = {}
+    for b in bench.get("benchmarks", []):
+        if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
+            continue
+        name = b.get("run_name", b["name"])
+        out[name] = (b["real_time"], b["time_unit"], b)
+    return out
+
+
+def plot_bench(bench, out):
+    med = bench_medians(bench)
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
+    for ax, prefix, title in ((axes[0], "BM_Tabulate", "tabulation over the degree-2p rule"),
+                              (axes[1], "BM_BuildLagrangeBasis", "building the Lagrange basis")):
+        for cell_arg, cell in (("0", "triangle"), ("1", "tet")):
+            pts = sorted((int(n.split("/")[2]), v[0]) for n, v in med.items()
+                         if n.startswith(prefix + "/" + cell_arg + "/"))
+            if pts:
+                ax.semilogy([p for p, _ in pts], [t for _, t in pts], "o-", label=cell)
+        ax.set_xlabel("order p")
+        ax.set_ylabel("median time [us]")
+        ax.set_title(title)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend()
+    fig.tight_layout()
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+
+
+def summary(report, bench):
+    s = report["summary"]
+    print(f"\nverification: {s['checks']} checks, {s['passed']} passed, {s['failed']} failed")
+    print(f"{'group':34} {'checks':>7} {'failed':>7}")
+    for g, c in sorted(s["groups"].items()):
+        print(f"{g:34} {c['checks']:>7} {c['failed']:>7}")
+    worst = {}
+    for r in report["rows"]:
+        if r["compare"] == "<=" and isinstance(r["measured"], (int, float)) and r["threshold"] > 0:
+            ratio = r["measured"] / r["threshold"]
+            if ratio > worst.get(r["group"], (0, ""))[0]:
+                worst[r["group"]] = (ratio, r["name"], r["measured"])
+    print("\nclosest to failing (measured / threshold):")
+    for g, (ratio, name, meas) in sorted(worst.items()):
+        print(f"  {g:32} {ratio:9.3g}  {name}: {meas:.3g}")
+    med = bench_medians(bench)
+    print("\nbenchmarks (median of 3 repetitions):")
+    for key in ("BM_GaussLegendre/64", "BM_CollapsedRule/1/30", "BM_BuildLagrangeBasis/1/3", "BM_BuildLagrangeBasis/1/6",
+                "BM_Tabulate/1/2", "BM_Tabulate/1/3", "BM_Tabulate/1/6", "BM_CachedTabulation/3", "BM_EvaluateAtPoint/1/3"):
+        if key in med:
+            t, unit, _ = med[key]
+            print(f"  {key:32} {t:12.4g} {unit}")
+    ctx = bench.get("context", {})
+    print(f"  machine: {ctx.get('num_cpus', '?')} cpus @ {ctx.get('mhz_per_cpu', '?')} MHz, build: {ctx.get('hofem_build', '?')}")
+
+
+def main():
+    reports = Path(sys.argv[1] if len(sys.argv) > 1 else "reports")
+    report = load(reports / "verification.json")
+    bench = load(reports / "benchmarks.json")
+    plot_points(report, reports / "quadrature_points.png")
+    plot_exactness(report, reports / "quadrature_exactness.png")
+    plot_conditioning(report, reports / "basis_conditioning.png")
+    plot_bench(bench, reports / "benchmark_foundation.png")
+    summary(report, bench)
+    print(f"\nplots: {', '.join(sorted(p.name for p in reports.glob('*.png')))}")
+
+
+if __name__ == "__main__":
+    main()
