@@ -2,13 +2,7 @@
 # All come from Debian packages (scripts/install-deps installs them); a missing one
 # stops configuration with the name of the Debian package that provides it.
 
-function(hofem_require found what package)
-  if(NOT ${found})
-    message(FATAL_ERROR
-      "hofem: ${what} not found. Install the Debian package '${package}' "
-      "(scripts/install-deps installs everything hofem needs).")
-  endif()
-endfunction()
+include(HofemRequire)
 
 find_package(Eigen3 3.4 QUIET NO_MODULE)
 hofem_require(Eigen3_FOUND "Eigen 3.4" "libeigen3-dev")
