@@ -1,0 +1,66 @@
+#pragma once
+// Hyperelastic materials as pure functions of the deformation gradient F:
+// energy density psi(F), first Piola–Kirchhoff stress P = dpsi/dF, and its
+// derivative dP/dF as a 9x9 matrix.
+//
+// Flattening convention (used everywhere in hofem): vec(F) is column-major,
+// vec(F)[i + 3 j] = F(i, j); dPdF(a, b) = d vec(P)[a] / d vec(F)[b].
+#include <Eigen/Core>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hofem {
+
+using Mat3 = Eigen::Matrix3d;
+using Mat9 = Eigen::Matrix<double, 9, 9>;
+
+/// Lamé parameters.
+struct LameParameters {
+  double mu = 0.0;      ///< shear modulus
+  double lambda = 0.0;  ///< first Lamé parameter
+  /// mu = E / (2(1+nu)), lambda = E nu / ((1+nu)(1-2nu)); requires E > 0, -1 < nu < 0.5.
+  static LameParameters from_young_poisson(double young, double poisson);
+};
+
+/// Thrown when stress or its derivative is requested where the material is not
+/// defined (e.g. Neo-Hookean at det F <= 0); names the material and det F.
+class MaterialDomainError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Material {
+ public:
+  virtual ~Material() = default;
+  virtual std::string_view name() const = 0;
+  /// Whether psi is defined at F (false e.g. for Neo-Hookean with det F <= 0).
+  virtual bool defined_at(const Mat3& F) const { (void)F; return true; }
+  /// psi(F); +infinity where the material is not defined (so a line search backs off).
+  virtual double energy(const Mat3& F) const = 0;
+  /// P(F); throws MaterialDomainError where not defined.
+  virtual Mat3 stress(const Mat3& F) const = 0;
+  /// dP/dF (9x9, see the flattening convention); throws MaterialDomainError where not defined.
+  virtual Mat9 stress_derivative(const Mat3& F) const = 0;
+  /// Whether the material needs a polar decomposition / SVD of F (corotated does).
+  virtual bool needs_polar_decomposition() const { return false; }
+  const LameParameters& lame() const { return lame_; }
+
+ protected:
+  explicit Material(LameParameters lame) : lame_(lame) {}
+  LameParameters lame_;
+};
+
+/// Names accepted by make_material: "linear", "stvk", "corotated", "neohookean", "stable-neohookean".
+std::vector<std::string> material_names();
+/// Throws std::invalid_argument naming the valid choices for an unknown name.
+std::unique_ptr<Material> make_material(std::string_view name, LameParameters lame);
+
+/// Projection of a symmetric 9x9 matrix onto the positive semi-definite cone
+/// (eigenvalues clamped at zero), used per quadrature point by Newton on request.
+Mat9 project_psd(const Mat9& A);
+
+}  // namespace hofem

@@ -1,0 +1,28 @@
+#include "mesh/mesh.hpp"
+
+#include <fmt/format.h>
+
+namespace hofem {
+
+const std::vector<int>& Mesh::node_set(const std::string& name) const {
+  const auto it = node_sets.find(name);
+  if (it != node_sets.end()) return it->second;
+  std::string names;
+  for (const auto& [n, _] : node_sets) names += (names.empty() ? "" : ", ") + n;
+  throw MeshError(fmt::format("no node set '{}' (available: {})", name, names.empty() ? "none" : names));
+}
+
+int nodes_per_element(CellType cell, int order) {
+  if (cell == CellType::Tetrahedron) {
+    if (order < 1) throw MeshError(fmt::format("tetrahedron order must be >= 1, got {}", order));
+    return (order + 1) * (order + 2) * (order + 3) / 6;
+  }
+  if (cell == CellType::Hexahedron) {
+    if (order == 1) return 8;
+    if (order == 2) return 20;
+    throw MeshError(fmt::format("hexahedron order must be 1 (Hex8) or 2 (Hex20), got {}", order));
+  }
+  throw MeshError(fmt::format("meshes of {} cells are not supported (tet or hex)", name(cell)));
+}
+
+}  // namespace hofem
