@@ -29,10 +29,22 @@ struct BasisOptions {
 };
 int run_basis(const BasisOptions& o);
 
+struct MmsOptions {
+  std::string problem;
+  int order = 1;
+  int n = 4;
+  std::string cell = "tet";
+  bool perturbed = false;
+  std::string solver = "cholmod";
+  bool json = false;
+};
+int run_mms(const MmsOptions& o);
+
 struct VerifyOptions {
   std::string out = "reports/verification.json";
   std::string group;
   bool quiet = false;
+  std::string convergence = "ci";
 };
 int run_verify(const VerifyOptions& o);
 

@@ -3,6 +3,8 @@
 //   hofem quadrature --cell tet --degree 8 [--json]   the rule a query returns
 //   hofem quadrature --cell tet --list                every tabulated rule of a cell
 //   hofem basis --cell tet --order 3 [--json]         Lagrange nodes in Gmsh order
+//   hofem mms --problem linear --order 2 --n 8 [--cell tet|hex] [--json]
+//                                                     manufactured-solution errors
 //   hofem verify [--out reports/verification.json]    the verification suite
 //
 // Bad arguments print one line, "hofem: error: ...", and exit with status 2;
@@ -34,11 +36,22 @@ int main(int argc, char** argv) {
   basis->add_option("--order", bo.order, "Polynomial order (>= 1; hex: 1 = Hex8, 2 = Hex20)")->required();
   basis->add_flag("--json", bo.json, "Print JSON");
 
+  hofem::cli::MmsOptions mo;
+  auto* mms = app.add_subcommand("mms", "Solve a manufactured-solution problem on the unit cube and print its errors");
+  mms->add_option("--problem", mo.problem, "linear or neohookean")->required();
+  mms->add_option("--order", mo.order, "Element order (tet: >= 1; hex: 1 = Hex8, 2 = Hex20)")->required();
+  mms->add_option("--n", mo.n, "Cubes per side (>= 1)")->required();
+  mms->add_option("--cell", mo.cell, "tet or hex")->capture_default_str();
+  mms->add_flag("--perturbed", mo.perturbed, "Randomly perturb interior vertices (non-uniform mesh)");
+  mms->add_option("--solver", mo.solver, "Linear solver: cholmod or eigen-ldlt")->capture_default_str();
+  mms->add_flag("--json", mo.json, "Print JSON");
+
   hofem::cli::VerifyOptions vo;
   auto* verify = app.add_subcommand("verify", "Run the verification suite and write its JSON report");
   verify->add_option("--out", vo.out, "Report path")->capture_default_str();
   verify->add_option("--group", vo.group, "Only report rows whose group starts with this prefix");
   verify->add_flag("--quiet", vo.quiet, "Print only the summary line");
+  verify->add_option("--convergence", vo.convergence, "Manufactured-solution study: none, ci or full")->capture_default_str();
 
   // CLI11 reports an unknown first word as "a subcommand is required"; name it instead.
   if (argc > 1 && argv[1][0] != '-') {
@@ -46,7 +59,7 @@ int main(int argc, char** argv) {
     bool known = false;
     for (const auto* sub : app.get_subcommands({})) known = known || sub->get_name() == first;
     if (!known) {
-      fmt::print(stderr, "hofem: error: unknown subcommand '{}' (valid: quadrature, basis, verify)\n", first);
+      fmt::print(stderr, "hofem: error: unknown subcommand '{}' (valid: quadrature, basis, mms, verify)\n", first);
       return 2;
     }
   }
@@ -67,6 +80,7 @@ int main(int argc, char** argv) {
     if (*quad) return hofem::cli::run_quadrature(qo);
     if (*basis) return hofem::cli::run_basis(bo);
     if (*verify) return hofem::cli::run_verify(vo);
+    if (*mms) return hofem::cli::run_mms(mo);
   } catch (const hofem::cli::UsageError& e) {
     fmt::print(stderr, "hofem: error: {}\n", e.what());
     return 2;

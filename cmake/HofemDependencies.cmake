@@ -22,6 +22,10 @@ hofem_require(GTest_FOUND "GoogleTest" "libgtest-dev")
 find_package(benchmark QUIET)
 hofem_require(benchmark_FOUND "Google Benchmark" "libbenchmark-dev")
 
+# OpenMP (GCC's libgomp): element assembly runs colour by colour in parallel.
+find_package(OpenMP QUIET COMPONENTS CXX)
+hofem_require(OpenMP_CXX_FOUND "OpenMP for C++" "libgomp1 (part of g++)")
+
 # MPI: Debian's hypre is an MPI build, so every program that uses it must call
 # MPI_Init before HYPRE_Init (it then runs serially without mpirun).
 find_package(MPI QUIET COMPONENTS C CXX)

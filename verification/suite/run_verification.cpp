@@ -1,14 +1,26 @@
 #include "run_verification.hpp"
 
 #include "basis_checks.hpp"
+#include "convergence_checks.hpp"
+#include "element_checks.hpp"
+#include "material_checks.hpp"
 #include "quadrature_checks.hpp"
 
 namespace hofem::verification {
 
-Report run_all_checks() {
+Report run_fast_checks() {
   Report report;
   add_quadrature_checks(report);
   add_basis_checks(report);
+  add_material_checks(report);
+  add_element_checks(report);
+  add_patch_checks(report);
+  return report;
+}
+
+Report run_all_checks(const SuiteOptions& options) {
+  Report report = run_fast_checks();
+  if (options.convergence != "none") add_convergence_checks(report, options.convergence);
   return report;
 }
 

@@ -1,9 +1,19 @@
 #pragma once
 #include "report.hpp"
 
+#include <string>
+
 namespace hofem::verification {
 
-/// Runs every check of the suite (quadrature, bases) into one report.
-Report run_all_checks();
+struct SuiteOptions {
+  /// Manufactured-solution convergence study: "none", "ci" or "full".
+  std::string convergence = "ci";
+};
+
+/// Fast checks: quadrature, bases, materials, elements, patch tests (seconds).
+Report run_fast_checks();
+
+/// Every check of the suite: the fast ones plus the convergence study.
+Report run_all_checks(const SuiteOptions& options = {});
 
 }  // namespace hofem::verification

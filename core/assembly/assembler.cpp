@@ -1,0 +1,216 @@
+#include "assembly/assembler.hpp"
+
+#include "element/element_kernel.hpp"
+#include "quadrature/rule_library.hpp"
+
+#include <fmt/format.h>
+
+#include <exception>
+#include <mutex>
+#include <type_traits>
+
+namespace hofem {
+
+namespace {
+
+// Calls f with the node count as a compile-time constant where one is
+// instantiated (Tet4, Hex8, Tet10, Tet20, Hex20), Eigen::Dynamic otherwise.
+template <class F>
+void dispatch_nodes(int n, F&& f) {
+  switch (n) {
+    case 4: f(std::integral_constant<int, 4>{}); break;
+    case 8: f(std::integral_constant<int, 8>{}); break;
+    case 10: f(std::integral_constant<int, 10>{}); break;
+    case 20: f(std::integral_constant<int, 20>{}); break;
+    default: f(std::integral_constant<int, Eigen::Dynamic>{}); break;
+  }
+}
+
+// Runs body(ws, e) for every element, colour by colour, in parallel within a
+// colour. The first exception (e.g. an inverted element) is rethrown after the
+// parallel region with the element index added.
+// Below this many elements a parallel region costs more than it saves (thread
+// wake-up is ~10-100 us, an element ~1-50 us), and idle OpenMP threads spinning
+// next to CHOLMOD's BLAS threads slow small solves down measurably.
+constexpr int kMinParallelElements = 512;
+
+template <int N, class Body>
+void for_each_element(const Mesh& mesh, const SparsityPattern& pattern, Body&& body) {
+  std::exception_ptr error;
+  int error_element = -1;
+  std::mutex error_mutex;
+#pragma omp parallel if (mesh.num_elements() >= kMinParallelElements)
+  {
+    ElementWorkspace<N> ws(mesh.nodes_per_element());
+    for (const auto& colour : pattern.colours()) {
+      const int count = static_cast<int>(colour.size());
+#pragma omp for schedule(static)
+      for (int k = 0; k < count; ++k) {
+        const int e = colour[k];
+        try {
+          body(ws, e);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(error_mutex);
+          if (!error || e < error_element) error = std::current_exception(), error_element = e;
+        }
+      }
+    }
+  }
+  if (error) {
+    try {
+      std::rethrow_exception(error);
+    } catch (const ElementGeometryError& ex) {
+      throw ElementGeometryError(fmt::format("element {}: {}", error_element, ex.what()));
+    } catch (const MaterialDomainError& ex) {
+      throw MaterialDomainError(fmt::format("element {}: {}", error_element, ex.what()));
+    }
+  }
+}
+
+// Reference and current coordinates of element e's nodes (x: 3 per node).
+template <int N>
+void gather(const Mesh& mesh, const double* x, int e, ElementWorkspace<N>& ws) {
+  for (int i = 0; i < ws.nodes(); ++i) {
+    const int node = mesh.elements(i, e);
+    ws.X.col(i) = mesh.nodes.col(node);
+    ws.x.col(i) = Eigen::Map<const Eigen::Vector3d>(x + 3 * node);
+  }
+}
+
+}  // namespace
+
+int default_quadrature_degree(CellType cell, int order, bool linear_material) {
+  if (cell == CellType::Tetrahedron) return linear_material ? std::max(1, 2 * (order - 1)) : 2 * order;
+  return 2 * order;
+}
+
+Assembler::Assembler(const Mesh& mesh, const DofMap& dofs, int quadrature_degree)
+    : mesh_(mesh), dofs_(dofs) {
+  if (dofs.num_dofs() != 3 * mesh.num_nodes())
+    throw std::invalid_argument(fmt::format("Assembler: DofMap has {} DOFs for {} nodes", dofs.num_dofs(), mesh.num_nodes()));
+  degree_ = quadrature_degree >= 0 ? quadrature_degree : default_quadrature_degree(mesh.cell, mesh.order, false);
+  rule_ = &quadrature_rule(mesh.cell, degree_);
+  tab_ = &cached_tabulation(mesh.cell, mesh.order, degree_);
+  if (tab_->num_basis != mesh.nodes_per_element())
+    throw MeshError(fmt::format("Assembler: {} nodes per element but the order-{} basis has {}", mesh.nodes_per_element(),
+                                mesh.order, tab_->num_basis));
+  pattern_ = std::make_unique<SparsityPattern>(mesh, dofs);
+}
+
+namespace {
+void check_size(const Eigen::VectorXd& x, const Mesh& mesh) {
+  if (x.size() != 3 * mesh.num_nodes())
+    throw std::invalid_argument(fmt::format("Assembler: position vector has {} entries, expected {}", x.size(), 3 * mesh.num_nodes()));
+}
+}  // namespace
+
+double Assembler::energy(const Material& mat, const Eigen::VectorXd& x) const {
+  check_size(x, mesh_);
+  ++counters_.energy;
+  std::vector<double> per_element(mesh_.num_elements());
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, x.data(), e, ws);
+      per_element[e] = element_energy(mat, *tab_, rule_->weights, ws);
+    });
+  });
+  double total = 0.0;  // sequential sum: reproducible whatever the thread count
+  for (double v : per_element) total += v;
+  return total;
+}
+
+double Assembler::gradient(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
+  check_size(x, mesh_);
+  ++counters_.gradient;
+  g.setZero(3 * mesh_.num_nodes());
+  std::vector<double> per_element(mesh_.num_elements());
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, x.data(), e, ws);
+      per_element[e] = element_gradient(mat, *tab_, rule_->weights, ws);
+      for (int i = 0; i < ws.nodes(); ++i) g.segment<3>(3 * mesh_.elements(i, e)) += ws.g.template segment<3>(3 * i);
+    });
+  });
+  double total = 0.0;
+  for (double v : per_element) total += v;
+  return total;
+}
+
+double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g, SparseMatrix& K,
+                          bool project) const {
+  check_size(x, mesh_);
+  ++counters_.hessian;
+  if (K.nonZeros() != pattern_->nonzeros()) K = new_matrix();
+  std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
+  g.setZero(3 * mesh_.num_nodes());
+  double* values = K.valuePtr();
+  const int bd = pattern_->block_dim();
+  std::vector<double> per_element(mesh_.num_elements());
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, x.data(), e, ws);
+      per_element[e] = element_hessian(mat, *tab_, rule_->weights, ws, project);
+      for (int i = 0; i < ws.nodes(); ++i) g.segment<3>(3 * mesh_.elements(i, e)) += ws.g.template segment<3>(3 * i);
+      const int* map = pattern_->element_map(e);
+      for (int r = 0; r < bd; ++r)
+        for (int c = 0; c < bd; ++c)
+          if (const int pos = map[r * bd + c]; pos >= 0) values[pos] += ws.H(r, c);
+    });
+  });
+  double total = 0.0;
+  for (double v : per_element) total += v;
+  return total;
+}
+
+Eigen::VectorXd Assembler::body_force_vector(const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& f,
+                                             int degree) const {
+  const QuadratureRule& rule = quadrature_rule(mesh_.cell, degree);
+  const BasisTabulation& tab = cached_tabulation(mesh_.cell, mesh_.order, degree);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, mesh_.nodes.data(), e, ws);
+      for (int q = 0; q < rule.size(); ++q) {
+        const double wq = reference_gradients(tab, rule.weights, q, ws);
+        const Eigen::Vector3d X = ws.X * tab.values.col(q);
+        const Eigen::Vector3d fq = f(X);
+        for (int i = 0; i < ws.nodes(); ++i) b.segment<3>(3 * mesh_.elements(i, e)) += wq * tab.values(i, q) * fq;
+      }
+    });
+  });
+  return b;
+}
+
+SparseMatrix Assembler::mass_matrix(double density, int degree) const {
+  const QuadratureRule& rule = quadrature_rule(mesh_.cell, degree);
+  const BasisTabulation& tab = cached_tabulation(mesh_.cell, mesh_.order, degree);
+  SparseMatrix M = new_matrix();
+  double* values = M.valuePtr();
+  const int bd = pattern_->block_dim();
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, mesh_.nodes.data(), e, ws);
+      const int nn = ws.nodes();
+      // Built once per simulation, so the dynamic-size case may allocate here.
+      Eigen::Matrix<double, N, N> Me(nn, nn);
+      Me.setZero();
+      for (int q = 0; q < rule.size(); ++q) {
+        const double wq = density * reference_gradients(tab, rule.weights, q, ws);
+        Me.noalias() += wq * tab.values.col(q).head(nn) * tab.values.col(q).head(nn).transpose();
+      }
+      const int* map = pattern_->element_map(e);
+      for (int i = 0; i < nn; ++i)
+        for (int j = 0; j < nn; ++j)
+          for (int a = 0; a < 3; ++a)
+            if (const int pos = map[(3 * i + a) * bd + 3 * j + a]; pos >= 0) values[pos] += Me(i, j);
+    });
+  });
+  return M;
+}
+
+}  // namespace hofem

@@ -1,0 +1,78 @@
+#pragma once
+// Global assembly of a hyperelastic body's energy, gradient and Hessian over
+// the free DOFs, plus load vectors and the consistent mass matrix.
+//
+// Everything that does not change between assemblies is built once in the
+// constructor: the quadrature rule and basis tabulation, the sparsity pattern
+// with its element-to-nonzero map and element colouring. Each assembly then only
+// evaluates elements and writes values. Elements of one colour run in parallel
+// (OpenMP), each thread with its own fixed-size workspace: no allocation inside
+// the element loop.
+#include "assembly/dof_map.hpp"
+#include "assembly/sparse_matrix.hpp"
+#include "assembly/sparsity_pattern.hpp"
+#include "basis/basis_tabulation.hpp"
+#include "material/material.hpp"
+#include "mesh/mesh.hpp"
+#include "quadrature/quadrature_rule.hpp"
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <memory>
+
+namespace hofem {
+
+/// Quadrature degree for the stiffness terms of an element when none is given:
+/// linear elasticity on affine (straight-sided) tetrahedra integrates exactly
+/// with 2(p-1) (product of two gradients of degree p-1); nonlinear materials get
+/// 2p (the choice of the second seed for Tet10 is 3 after its LP simplification;
+/// we keep a full rule). Hex: 2p (p + 1 Gauss points per direction).
+int default_quadrature_degree(CellType cell, int order, bool linear_material);
+
+class Assembler {
+ public:
+  /// quadrature_degree < 0: default_quadrature_degree(cell, order, false).
+  Assembler(const Mesh& mesh, const DofMap& dofs, int quadrature_degree = -1);
+
+  const Mesh& mesh() const { return mesh_; }
+  const DofMap& dofs() const { return dofs_; }
+  const SparsityPattern& pattern() const { return *pattern_; }
+  const QuadratureRule& rule() const { return *rule_; }
+  int quadrature_degree() const { return degree_; }
+
+  /// x: current positions, 3 * num_nodes (global DOF order). Total elastic energy.
+  double energy(const Material& mat, const Eigen::VectorXd& x) const;
+  /// Elastic energy; g (resized to 3 * num_nodes) receives the internal force vector.
+  double gradient(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g) const;
+  /// Energy, internal forces g (all DOFs) and the Hessian K over the free DOFs
+  /// (K must have this assembler's pattern; use new_matrix()). project: PSD
+  /// projection of dP/dF at every quadrature point.
+  double hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g, SparseMatrix& K, bool project) const;
+  /// A zero matrix with the free-DOF pattern.
+  SparseMatrix new_matrix() const { return pattern_->zero_matrix(); }
+
+  /// Consistent load vector sum_e int N_i f(X) dX (all DOFs) of a body force
+  /// density f(X), with a rule of the given degree.
+  Eigen::VectorXd body_force_vector(const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& f, int degree) const;
+  /// Consistent mass matrix int rho N_i N_j (identity in the components) over the
+  /// free DOFs, rule of degree >= 2p for any order.
+  SparseMatrix mass_matrix(double density, int degree) const;
+
+  /// How often each kind of assembly ran (the run statistics quote these).
+  struct Counters {
+    long energy = 0, gradient = 0, hessian = 0;
+  };
+  const Counters& counters() const { return counters_; }
+
+ private:
+  const Mesh& mesh_;
+  const DofMap& dofs_;
+  int degree_;
+  const QuadratureRule* rule_;
+  const BasisTabulation* tab_;
+  std::unique_ptr<SparsityPattern> pattern_;
+  mutable Counters counters_;
+};
+
+}  // namespace hofem

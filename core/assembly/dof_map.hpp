@@ -1,0 +1,38 @@
+#pragma once
+// Degrees of freedom: three per node (x, y, z displacement/position components),
+// global index 3 * node + component. Dirichlet conditions are imposed by
+// elimination: constrained DOFs keep prescribed values and are left out of the
+// free numbering that gradients and Hessians use.
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace hofem {
+
+class DofMap {
+ public:
+  DofMap() = default;
+  /// All DOFs of the given nodes are constrained (all three components).
+  DofMap(int num_nodes, const std::vector<int>& constrained_nodes);
+
+  int num_dofs() const { return static_cast<int>(free_index_.size()); }
+  int num_free() const { return num_free_; }
+  /// Free index of a global DOF, or -1 if constrained.
+  int free_index(int dof) const { return free_index_[dof]; }
+  const std::vector<int>& free_index() const { return free_index_; }
+  /// Global DOF of each free index.
+  const std::vector<int>& free_dofs() const { return free_dofs_; }
+  const std::vector<int>& constrained_dofs() const { return constrained_dofs_; }
+
+  /// Restriction of a global vector to the free DOFs, and the reverse scatter.
+  Eigen::VectorXd restrict(const Eigen::VectorXd& global) const;
+  void add_free(const Eigen::VectorXd& free_values, Eigen::VectorXd& global) const;
+
+ private:
+  std::vector<int> free_index_;
+  std::vector<int> free_dofs_;
+  std::vector<int> constrained_dofs_;
+  int num_free_ = 0;
+};
+
+}  // namespace hofem

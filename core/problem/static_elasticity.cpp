@@ -1,0 +1,156 @@
+#include "problem/static_elasticity.hpp"
+
+#include "mesh/mesh_quality.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace hofem {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::vector<int> constrained_nodes(const std::vector<DirichletCondition>& bcs) {
+  std::vector<int> nodes;
+  for (const auto& bc : bcs) nodes.insert(nodes.end(), bc.nodes.begin(), bc.nodes.end());
+  return nodes;
+}
+
+}  // namespace
+
+StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, std::vector<DirichletCondition> dirichlet,
+                                   VectorField body_force, StaticOptions options)
+    : mesh_(mesh),
+      material_(material),
+      dirichlet_(std::move(dirichlet)),
+      options_(std::move(options)),
+      dofs_(mesh.num_nodes(), constrained_nodes(dirichlet_)) {
+  const auto t0 = Clock::now();
+  validate_mesh(mesh);  // inverted / degenerate elements are rejected with their index
+  assembler_ = std::make_unique<Assembler>(mesh, dofs_, options_.quadrature_degree);
+  solver_ = make_linear_solver(options_.linear_solver);
+  const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * mesh.order + 2;
+  f_ext_ = body_force ? assembler_->body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+  u_dirichlet_ = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+  for (const auto& bc : dirichlet_)
+    if (bc.displacement)
+      for (int n : bc.nodes) u_dirichlet_.segment<3>(3 * n) = bc.displacement(mesh.nodes.col(n));
+  u_full_ = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+  x_ = Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), 3 * mesh.num_nodes());
+  assembly_seconds_ = 0.0;
+  setup_seconds_hint_ = seconds_since(t0);
+}
+
+void StaticElasticity::set_state(const Eigen::VectorXd& u_free) {
+  for (int d : dofs_.constrained_dofs()) u_full_[d] = load_ * u_dirichlet_[d];
+  const auto& free = dofs_.free_dofs();
+  for (int i = 0; i < dofs_.num_free(); ++i) u_full_[free[i]] = u_free[i];
+  x_ = Eigen::Map<const Eigen::VectorXd>(mesh_.nodes.data(), 3 * mesh_.num_nodes()) + u_full_;
+}
+
+double StaticElasticity::energy(const Eigen::VectorXd& u) {
+  set_state(u);
+  const auto t0 = Clock::now();
+  const double e = assembler_->energy(material_, x_);
+  assembly_seconds_ += seconds_since(t0);
+  return e - load_ * f_ext_.dot(u_full_);
+}
+
+double StaticElasticity::gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) {
+  set_state(u);
+  const auto t0 = Clock::now();
+  double e = std::numeric_limits<double>::infinity();
+  try {
+    e = assembler_->gradient(material_, x_, g_full_);
+  } catch (const MaterialDomainError&) {
+    g.setZero(dofs_.num_free());
+    assembly_seconds_ += seconds_since(t0);
+    return std::numeric_limits<double>::infinity();
+  }
+  assembly_seconds_ += seconds_since(t0);
+  g = dofs_.restrict(g_full_ - load_ * f_ext_);
+  return e - load_ * f_ext_.dot(u_full_);
+}
+
+void StaticElasticity::hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K, bool project) {
+  set_state(u);
+  const auto t0 = Clock::now();
+  assembler_->hessian(material_, x_, g_full_, K, project);
+  assembly_seconds_ += seconds_since(t0);
+  g = dofs_.restrict(g_full_ - load_ * f_ext_);
+}
+
+double StaticElasticity::force_scale(const Eigen::VectorXd& g0) const {
+  // The largest of: the applied body force, the force the current load step
+  // adds (body-force increment plus the reaction to the prescribed boundary
+  // increment, measured by the predictor), and the first residual. Relative to
+  // this, ||g|| <= rtol * scale does not depend on units or mesh size; a problem
+  // loaded only through its boundary (zero body force) still has a scale.
+  const double s = std::max({load_ * dofs_.restrict(f_ext_).norm(), step_force_, g0.norm()});
+  return s > 0.0 ? s : 1.0;
+}
+
+Eigen::VectorXd StaticElasticity::predict(const Eigen::VectorXd& u, double from, double to) {
+  Eigen::VectorXd g0, g1, du;
+  SparseMatrix K;
+  load_ = from;
+  hessian(u, g0, K, true);  // PSD-projected: a predictor must be a descent-like step
+  if (!solver_->factorize(K)) return u;
+  // d g / d load by a forward difference: the body-force part is linear in the
+  // load, and the Dirichlet part is evaluated on a tiny boundary move (1e-6 of
+  // the step) that cannot fold an element.
+  const double eps = 1e-6 * (to - from);
+  load_ = from + eps;
+  if (!std::isfinite(gradient(u, g1))) return u;
+  const Eigen::VectorXd dg = (g1 - g0) / eps * (to - from);
+  step_force_ = dg.norm();
+  solver_->solve(-dg, du);
+  const Eigen::VectorXd trial = u + du;
+  load_ = to;
+  return std::isfinite(energy(trial)) ? trial : u;
+}
+
+StaticReport StaticElasticity::solve() {
+  StaticReport report;
+  report.setup_seconds = setup_seconds_hint_;
+  const auto t0 = Clock::now();
+  assembly_seconds_ = 0.0;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(dofs_.num_free());
+  double done = 0.0, step = 1.0;
+  int halvings = 0;
+  while (done < 1.0) {
+    const double target = std::min(1.0, done + step);
+    step_force_ = 0.0;
+    Eigen::VectorXd trial = options_.predictor ? predict(u, done, target) : u;
+    load_ = target;
+    NewtonResult r = newton_minimize(*this, trial, *solver_, options_.newton);
+    report.newton_iterations += r.iterations;
+    report.steps.push_back(r);
+    if (r.converged) {
+      u = trial;
+      done = load_;
+      ++report.load_steps;
+      continue;
+    }
+    if (++halvings > options_.max_load_halvings) {
+      report.message = fmt::format("failed at load {:.4f}: {}", load_, r.message);
+      break;
+    }
+    step *= 0.5;
+  }
+  report.converged = done >= 1.0;
+  if (report.converged) report.message = fmt::format("converged in {} load step(s), {} Newton iterations", report.load_steps, report.newton_iterations);
+  set_state(u);
+  report.assembly_seconds = assembly_seconds_;
+  report.solve_seconds = std::max(0.0, seconds_since(t0) - assembly_seconds_);
+  report.factorizations = solver_->factorizations();
+  report.symbolic_analyses = solver_->analyses();
+  return report;
+}
+
+}  // namespace hofem

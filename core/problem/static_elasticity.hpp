@@ -1,0 +1,96 @@
+#pragma once
+// Static equilibrium of a hyperelastic body: minimise the total potential
+//   Pi(u) = sum_e int psi(F) dX - int f . u dX
+// over displacements u with Dirichlet values on node sets (eliminated), by the
+// damped Newton of solver/newton.hpp. On failure the load (body force and
+// prescribed displacement together) is applied in smaller steps.
+#include "assembly/assembler.hpp"
+#include "assembly/dof_map.hpp"
+#include "material/material.hpp"
+#include "mesh/mesh.hpp"
+#include "solver/linear_solver.hpp"
+#include "solver/newton.hpp"
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace hofem {
+
+using VectorField = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
+
+struct DirichletCondition {
+  std::vector<int> nodes;     ///< all three components of these nodes are prescribed
+  VectorField displacement;   ///< u_D(X); empty means fixed (zero)
+};
+
+struct StaticOptions {
+  int quadrature_degree = -1;  ///< stiffness terms; < 0: default for order and material
+  int load_degree = -1;        ///< body-force integration; < 0: 2p + 2
+  std::string linear_solver = "cholmod";
+  NewtonOptions newton;
+  int max_load_halvings = 6;   ///< load stepping: up to 2^6 sub-steps
+  /// Tangent predictor at each load step: u += -K^-1 (dg/dload) dload, with K at
+  /// the last converged state. Without it the prescribed boundary displacement
+  /// arrives as a jump that folds the boundary layer of elements; with it the
+  /// first step at full load starts from the linearised (for the first step: the
+  /// linear-elastic) solution.
+  bool predictor = true;
+};
+
+struct StaticReport {
+  bool converged = false;
+  int newton_iterations = 0;  ///< summed over load steps
+  int load_steps = 0;
+  std::vector<NewtonResult> steps;
+  double assembly_seconds = 0.0;  ///< energy / gradient / Hessian assembly
+  double solve_seconds = 0.0;     ///< factorisations and triangular solves
+  double setup_seconds = 0.0;     ///< pattern, tabulation, load vector
+  int factorizations = 0;
+  int symbolic_analyses = 0;
+  std::string message;
+};
+
+class StaticElasticity final : public NonlinearProblem {
+ public:
+  StaticElasticity(const Mesh& mesh, const Material& material, std::vector<DirichletCondition> dirichlet,
+                   VectorField body_force, StaticOptions options = {});
+
+  StaticReport solve();
+
+  /// Displacement of every node, 3 * num_nodes (valid after solve()).
+  const Eigen::VectorXd& displacement() const { return u_full_; }
+  const Assembler& assembler() const { return *assembler_; }
+  const DofMap& dofs() const { return dofs_; }
+
+  // NonlinearProblem over the free DOFs (load factor applied).
+  int size() const override { return dofs_.num_free(); }
+  double energy(const Eigen::VectorXd& u) override;
+  double gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) override;
+  void hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K, bool project) override;
+  double force_scale(const Eigen::VectorXd& g0) const override;
+
+ private:
+  void set_state(const Eigen::VectorXd& u_free);  // fills x_ and u_full_
+  /// The tangent predictor from load `from` to `to` at state u (converged at `from`).
+  Eigen::VectorXd predict(const Eigen::VectorXd& u, double from, double to);
+  const Mesh& mesh_;
+  const Material& material_;
+  std::vector<DirichletCondition> dirichlet_;
+  StaticOptions options_;
+  DofMap dofs_;
+  std::unique_ptr<Assembler> assembler_;
+  std::unique_ptr<LinearSolver> solver_;
+  Eigen::VectorXd f_ext_;     ///< consistent body-force vector at full load (all DOFs)
+  Eigen::VectorXd u_dirichlet_;  ///< prescribed displacement at full load (all DOFs, zero elsewhere)
+  Eigen::VectorXd u_full_, x_, g_full_;
+  double load_ = 1.0;
+  double step_force_ = 0.0;  ///< |dg/dload| * dload of the current load step (force scale)
+  double assembly_seconds_ = 0.0;
+  double setup_seconds_hint_ = 0.0;
+};
+
+}  // namespace hofem

@@ -1,0 +1,78 @@
+#include "solver/cholmod_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace hofem {
+
+CholmodSolver::CholmodSolver() {
+  cholmod_l_start(&common_);
+  // Failures are reported to the caller (factorize() returns false); CHOLMOD's
+  // own printing of "not positive definite" warnings would only be noise.
+  common_.print = 0;
+}
+
+CholmodSolver::~CholmodSolver() {
+  if (factor_) cholmod_l_free_factor(&factor_, &common_);
+  cholmod_l_finish(&common_);
+}
+
+cholmod_sparse CholmodSolver::view(const SparseMatrix& A) const {
+  if (!A.isCompressed()) throw std::invalid_argument("CholmodSolver: matrix must be compressed");
+  cholmod_sparse s{};
+  s.nrow = static_cast<size_t>(A.rows());
+  s.ncol = static_cast<size_t>(A.cols());
+  s.nzmax = static_cast<size_t>(A.nonZeros());
+  s.p = const_cast<std::int64_t*>(A.outerIndexPtr());
+  s.i = const_cast<std::int64_t*>(A.innerIndexPtr());
+  s.nz = nullptr;
+  s.x = const_cast<double*>(A.valuePtr());
+  s.z = nullptr;
+  s.stype = 1;  // symmetric, stored in full: CHOLMOD reads the upper triangle
+  s.itype = CHOLMOD_LONG;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = 1;
+  s.packed = 1;
+  return s;
+}
+
+void CholmodSolver::analyze(const SparseMatrix& A) {
+  if (factor_) cholmod_l_free_factor(&factor_, &common_);
+  cholmod_sparse s = view(A);
+  factor_ = cholmod_l_analyze(&s, &common_);
+  if (!factor_) throw std::runtime_error(fmt::format("CHOLMOD analyze failed (status {})", common_.status));
+  n_ = A.rows();
+  ++analyses_;
+}
+
+bool CholmodSolver::factorize(const SparseMatrix& A) {
+  if (!factor_ || A.rows() != n_) analyze(A);
+  cholmod_sparse s = view(A);
+  cholmod_l_factorize(&s, factor_, &common_);
+  ++factorizations_;
+  if (common_.status == CHOLMOD_NOT_POSDEF) return false;
+  if (common_.status < 0) throw std::runtime_error(fmt::format("CHOLMOD factorize failed (status {})", common_.status));
+  return true;
+}
+
+void CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (!factor_) throw std::logic_error("CholmodSolver::solve before factorize");
+  cholmod_dense B{};
+  B.nrow = static_cast<size_t>(b.size());
+  B.ncol = 1;
+  B.nzmax = B.nrow;
+  B.d = B.nrow;
+  B.x = const_cast<double*>(b.data());
+  B.xtype = CHOLMOD_REAL;
+  B.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense* X = cholmod_l_solve(CHOLMOD_A, factor_, &B, &common_);
+  if (!X) throw std::runtime_error(fmt::format("CHOLMOD solve failed (status {})", common_.status));
+  x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(X->x), b.size());
+  cholmod_l_free_dense(&X, &common_);
+}
+
+double CholmodSolver::factor_nonzeros() const { return factor_ ? common_.lnz : 0.0; }
+
+}  // namespace hofem

@@ -1,0 +1,48 @@
+#include "solver/linear_solver.hpp"
+
+#include "solver/cholmod_solver.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace hofem {
+
+namespace {
+
+class EigenLdltSolver final : public LinearSolver {
+ public:
+  std::string_view name() const override { return "eigen-ldlt"; }
+  void analyze(const SparseMatrix& A) override {
+    ldlt_.analyzePattern(A);
+    ++analyses_;
+    analyzed_ = true;
+  }
+  bool factorize(const SparseMatrix& A) override {
+    if (!analyzed_) analyze(A);
+    ldlt_.factorize(A);
+    ++factorizations_;
+    if (ldlt_.info() != Eigen::Success) return false;
+    // LDL^T succeeds on indefinite matrices; report them as not positive definite
+    // like Cholesky does, so Newton treats both solvers alike.
+    return (ldlt_.vectorD().array() > 0.0).all();
+  }
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override { x = ldlt_.solve(b); }
+
+ private:
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper> ldlt_;
+  bool analyzed_ = false;
+};
+
+}  // namespace
+
+std::vector<std::string> linear_solver_names() { return {"cholmod", "eigen-ldlt"}; }
+
+std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name) {
+  if (name == "cholmod") return std::make_unique<CholmodSolver>();
+  if (name == "eigen-ldlt") return std::make_unique<EigenLdltSolver>();
+  throw std::invalid_argument(fmt::format("unknown linear solver '{}' (valid: cholmod, eigen-ldlt)", name));
+}
+
+}  // namespace hofem

@@ -1,0 +1,42 @@
+#pragma once
+// The linear-solver boundary: Newton and the time integrators see only this.
+// A solver analyses a sparsity pattern once (symbolic factorisation, orderings),
+// then factorises and solves many matrices with that pattern.
+#include "assembly/sparse_matrix.hpp"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hofem {
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  virtual std::string_view name() const = 0;
+  /// Symbolic analysis of A's pattern; called again only when the pattern changes.
+  virtual void analyze(const SparseMatrix& A) = 0;
+  /// Numeric factorisation (or set-up) for A. Returns false if A is not positive
+  /// definite for a solver that needs it (the caller may then modify A and retry).
+  virtual bool factorize(const SparseMatrix& A) = 0;
+  /// x = A^-1 b with the last factorised A.
+  virtual void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
+  /// Number of symbolic analyses / numeric factorisations done (run statistics).
+  int analyses() const { return analyses_; }
+  int factorizations() const { return factorizations_; }
+
+ protected:
+  int analyses_ = 0;
+  int factorizations_ = 0;
+};
+
+/// "cholmod" (supernodal Cholesky, SuiteSparse, 64-bit indices) or "eigen-ldlt"
+/// (Eigen's SimplicialLDLT, for comparison and small problems). Throws
+/// std::invalid_argument naming the valid choices.
+std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name);
+std::vector<std::string> linear_solver_names();
+
+}  // namespace hofem

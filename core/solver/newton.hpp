@@ -1,0 +1,65 @@
+#pragma once
+// Damped Newton for minimising a smooth energy (thesis Algorithm 1): solve
+// K d = -g, then backtracking (Armijo) line search on the energy.
+//
+// Stopping rule: ||g|| <= rtol * force_scale, where force_scale is a representative
+// force of the problem (the second seed stops when the residual falls below 1e-5
+// of a representative force, M a_rep with gravity; for a static problem we use
+// the external load and the first residual, see NonlinearProblem::force_scale).
+// Indefinite Hessians: if the factorisation reports "not positive definite" the
+// Hessian is rebuilt with per-point PSD projection of dP/dF and, failing that,
+// shifted by a growing multiple of its diagonal scale.
+#include "assembly/sparse_matrix.hpp"
+#include "solver/linear_solver.hpp"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace hofem {
+
+/// An energy over a vector of unknowns with gradient and sparse Hessian.
+class NonlinearProblem {
+ public:
+  virtual ~NonlinearProblem() = default;
+  virtual int size() const = 0;
+  /// +infinity where the energy is not defined (inverted elements for some materials).
+  virtual double energy(const Eigen::VectorXd& u) = 0;
+  /// Returns the energy; fills g.
+  virtual double gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) = 0;
+  /// Fills g and K (same pattern every call). project: PSD projection per quadrature point.
+  virtual void hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K, bool project) = 0;
+  /// Representative force magnitude for the relative stopping rule (> 0).
+  virtual double force_scale(const Eigen::VectorXd& g0) const = 0;
+};
+
+struct NewtonOptions {
+  int max_iterations = 50;
+  double rtol = 1e-9;           ///< ||g|| <= rtol * force_scale
+  bool project_psd = false;     ///< always project dP/dF (otherwise only after a failed factorisation)
+  double armijo = 1e-4;         ///< sufficient decrease constant c in E(u + a d) <= E(u) + c a g.d
+  int max_backtracks = 30;
+};
+
+struct NewtonIteration {
+  double residual = 0.0;  ///< ||g|| before the step
+  double energy = 0.0;
+  double step = 0.0;      ///< accepted line-search step length
+  bool projected = false;
+  double shift = 0.0;     ///< diagonal shift used (0 if none)
+};
+
+struct NewtonResult {
+  bool converged = false;
+  int iterations = 0;
+  double final_residual = 0.0;
+  double force_scale = 0.0;
+  std::vector<NewtonIteration> history;
+  std::string message;  ///< why it stopped
+};
+
+NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, LinearSolver& solver,
+                             const NewtonOptions& options);
+
+}  // namespace hofem

@@ -1,0 +1,69 @@
+#include "convergence_checks.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace hofem::verification {
+
+std::vector<ConvergenceSeries> convergence_series(const std::string& preset) {
+  const CellType tet = CellType::Tetrahedron, hex = CellType::Hexahedron;
+  if (preset == "full") {
+    std::vector<ConvergenceSeries> s;
+    for (const char* problem : {"linear", "neohookean"}) {
+      s.push_back({problem, tet, 1, false, {2, 4, 8, 16, 32}});
+      s.push_back({problem, tet, 2, false, {2, 4, 8, 16}});
+      s.push_back({problem, tet, 3, false, {2, 4, 8, 16}});
+    }
+    s.push_back({"linear", tet, 1, true, {4, 8, 16, 32}});
+    s.push_back({"linear", tet, 2, true, {4, 8, 16}});
+    s.push_back({"linear", tet, 3, true, {4, 8, 16}});
+    s.push_back({"linear", hex, 1, false, {2, 4, 8, 16, 32}});
+    s.push_back({"linear", hex, 2, false, {2, 4, 8, 16}});
+    s.push_back({"neohookean", hex, 2, false, {2, 4, 8, 16}});
+    return s;
+  }
+  if (preset == "ci") {
+    return {
+        {"linear", tet, 1, false, {4, 8, 16}},     {"linear", tet, 2, false, {2, 4, 8}},
+        {"linear", tet, 3, false, {2, 4, 8}},      {"neohookean", tet, 1, false, {4, 8, 16}},
+        {"neohookean", tet, 2, false, {2, 4, 8}},  {"neohookean", tet, 3, false, {2, 4, 8}},
+        {"linear", tet, 1, true, {4, 8, 16}},      {"linear", tet, 2, true, {4, 8}},
+        {"linear", tet, 3, true, {4, 8}},          {"linear", hex, 1, false, {4, 8, 16}},
+        {"linear", hex, 2, false, {2, 4, 8}},
+    };
+  }
+  throw std::invalid_argument(fmt::format("unknown convergence preset '{}' (valid: ci, full)", preset));
+}
+
+void add_convergence_checks(Report& report, const std::string& preset) {
+  for (const ConvergenceSeries& s : convergence_series(preset)) {
+    const std::string series = fmt::format("{}|{}|p{}|{}", s.problem, name(s.cell), s.order, s.perturbed ? "perturbed" : "uniform");
+    std::vector<MmsResult> results;
+    for (int n : s.sizes) {
+      const MmsResult r = run_mms({s.problem, s.cell, s.order, n, s.perturbed, "cholmod"});
+      const std::string run = fmt::format("{}|n{}", series, n);
+      report.measure("mms.l2_error", run, r.l2_error, fmt::format("dofs={} cells={}", r.dofs, r.cells));
+      report.measure("mms.h1_error", run, r.h1_error);
+      report.measure("mms.dofs", run, r.dofs);
+      report.measure("mms.seconds", run, r.total_seconds, fmt::format("setup {:.3f} assembly {:.3f} solve {:.3f}",
+                                                                    r.setup_seconds, r.assembly_seconds, r.solve_seconds));
+      report.measure("mms.newton_iterations", run, r.newton_iterations);
+      report.check("mms.converged", run, r.converged ? 1.0 : 0.0, 1.0, Compare::AtLeast, "Newton converged: " + r.message);
+      results.push_back(r);
+    }
+    if (results.size() < 2) continue;
+    const MmsResult& a = results[results.size() - 2];
+    const MmsResult& b = results.back();
+    const double l2_rate = std::log(a.l2_error / b.l2_error) / std::log(a.h / b.h);
+    const double h1_rate = std::log(a.h1_error / b.h1_error) / std::log(a.h / b.h);
+    const std::string pair = fmt::format("{} (n={}->{})", series, s.sizes[s.sizes.size() - 2], s.sizes.back());
+    report.check("mms.rate_l2", pair, l2_rate, s.order + 1 - 0.15, Compare::AtLeast,
+                 "observed L2 rate on the finest pair >= p + 1 - 0.15 (asymptotic O(h^(p+1)))");
+    report.check("mms.rate_h1", pair, h1_rate, s.order - 0.15, Compare::AtLeast,
+                 "observed H1-seminorm rate on the finest pair >= p - 0.15 (asymptotic O(h^p))");
+  }
+}
+
+}  // namespace hofem::verification

@@ -1,0 +1,29 @@
+#pragma once
+// Manufactured-solution convergence studies (issue 3): error tables and observed
+// rates on the finest pair of each sequence, asserted against the theoretical
+// rates L2 >= p + 1 - 0.15 and H1 >= p - 0.15.
+#include "manufactured_solution.hpp"
+#include "report.hpp"
+
+#include <string>
+#include <vector>
+
+namespace hofem::verification {
+
+struct ConvergenceSeries {
+  std::string problem;  ///< linear | neohookean
+  CellType cell;
+  int order;
+  bool perturbed;
+  std::vector<int> sizes;  ///< n (cubes per side), increasing
+};
+
+/// "ci": sizes chosen so the whole study runs in a few minutes on 2 cores;
+/// "full": the issue's sequence n = 2, 4, 8, 16 (order 1 also 32).
+std::vector<ConvergenceSeries> convergence_series(const std::string& preset);
+
+/// Runs every series; adds one measurement per run (errors, DOFs, seconds) and
+/// one check per observed rate.
+void add_convergence_checks(Report& report, const std::string& preset);
+
+}  // namespace hofem::verification
