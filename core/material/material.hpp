@@ -45,6 +45,18 @@ class Material {
   virtual Mat3 stress(const Mat3& F) const = 0;
   /// dP/dF (9x9, see the flattening convention); throws MaterialDomainError where not defined.
   virtual Mat9 stress_derivative(const Mat3& F) const = 0;
+  /// psi(F), plus P(F) into *P and dP/dF into *dPdF where those are non-null, from
+  /// one evaluation that shares the work (one polar decomposition for corotated, one
+  /// inverse for Neo-Hookean): the per-quadrature-point call of Newton's assembly.
+  /// Results are bit-identical to energy(), stress() and stress_derivative(). Where
+  /// the material is not defined, returns +infinity if only psi is requested and
+  /// throws MaterialDomainError (like stress()) if P or dP/dF is.
+  virtual double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const {
+    const double psi = energy(F);
+    if (P) *P = stress(F);
+    if (dPdF) *dPdF = stress_derivative(F);
+    return psi;
+  }
   /// Whether the material needs a polar decomposition / SVD of F (corotated does).
   virtual bool needs_polar_decomposition() const { return false; }
   const LameParameters& lame() const { return lame_; }
