@@ -13,7 +13,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include <thread>
+
 
 namespace {
 
@@ -119,13 +119,3 @@ void BM_EvaluateAtPoint(benchmark::State& state) {
 BENCHMARK(BM_EvaluateAtPoint)->ArgsProduct({{1}, {1, 2, 3, 4, 5, 6}})->Unit(benchmark::kNanosecond);
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  benchmark::AddCustomContext("hofem_build", HOFEM_BUILD_DESCRIPTION);
-  benchmark::AddCustomContext("hardware_threads", std::to_string(std::thread::hardware_concurrency()));
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}

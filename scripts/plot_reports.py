@@ -117,6 +117,83 @@ def plot_conditioning(report, out):
     plt.close(fig)
 
 
+def mms_series(report):
+    """{(problem, cell, order, mesh): [(n, h, dofs, l2, h1, seconds)]} from the measurements."""
+    values = {}
+    for m in report.get("measurements", []):
+        if m["group"] in ("mms.l2_error", "mms.h1_error", "mms.dofs", "mms.seconds"):
+            values.setdefault(m["name"], {})[m["group"]] = m["value"]
+    series = {}
+    for name, v in values.items():
+        problem, cell, order, mesh, n = name.split("|")
+        n = int(n[1:])
+        series.setdefault((problem, cell, int(order[1:]), mesh), []).append(
+            (n, 1.0 / n, v.get("mms.dofs"), v.get("mms.l2_error"), v.get("mms.h1_error"), v.get("mms.seconds")))
+    for k in series:
+        series[k].sort()
+    return series
+
+
+def plot_convergence(report, out):
+    series = mms_series(report)
+    if not series:
+        return False
+    problems = sorted({k[0] for k in series})
+    fig, axes = plt.subplots(len(problems), 3, figsize=(15, 4.2 * len(problems)), squeeze=False)
+    for row, problem in enumerate(problems):
+        ax_h, ax_dof, ax_time = axes[row]
+        for (prob, cell, order, mesh), pts in sorted(series.items()):
+            if prob != problem:
+                continue
+            label = f"{cell} p={order}{' perturbed' if mesh == 'perturbed' else ''}"
+            style = "--" if mesh == "perturbed" else "-"
+            h = np.array([p[1] for p in pts])
+            dofs = np.array([p[2] for p in pts], dtype=float)
+            l2 = np.array([p[3] for p in pts])
+            secs = np.array([p[5] for p in pts])
+            line, = ax_h.loglog(h, l2, "o" + style, label=label)
+            # Reference slope h^(p+1) through the finest point.
+            ax_h.loglog(h, l2[-1] * (h / h[-1]) ** (order + 1), ":", color=line.get_color(), alpha=0.6)
+            ax_dof.loglog(dofs, l2, "o" + style, color=line.get_color(), label=label)
+            ax_time.loglog(secs, l2, "o" + style, color=line.get_color(), label=label)
+        ax_h.set_title(f"{problem}: L2 error vs h (dotted: h^(p+1))")
+        ax_h.set_xlabel("h")
+        ax_dof.set_title(f"{problem}: L2 error vs DOFs")
+        ax_dof.set_xlabel("free DOFs")
+        ax_time.set_title(f"{problem}: work-precision (direct solver)")
+        ax_time.set_xlabel("wall time per solve [s]")
+        for ax in (ax_h, ax_dof, ax_time):
+            ax.set_ylabel("L2 error")
+            ax.grid(True, which="both", alpha=0.3)
+        ax_h.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    return True
+
+
+def plot_h1(report, out):
+    series = mms_series(report)
+    if not series:
+        return False
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for (prob, cell, order, mesh), pts in sorted(series.items()):
+        h = np.array([p[1] for p in pts])
+        h1 = np.array([p[4] for p in pts])
+        line, = ax.loglog(h, h1, "o-" if mesh == "uniform" else "s--", ms=4,
+                          label=f"{prob} {cell} p={order} {mesh}")
+        ax.loglog(h, h1[-1] * (h / h[-1]) ** order, ":", color=line.get_color(), alpha=0.5)
+    ax.set_xlabel("h")
+    ax.set_ylabel("H1-seminorm error")
+    ax.set_title("H1 error vs h (dotted: h^p)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=6)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    return True
+
+
 def bench_medians(bench):
     """name -> (median real time, unit, counters) from aggregate (or plain) entries."""
     out = {}
@@ -174,6 +251,49 @@ def summary(report, bench):
     print(f"  machine: {ctx.get('num_cpus', '?')} cpus @ {ctx.get('mhz_per_cpu', '?')} MHz, build: {ctx.get('hofem_build', '?')}")
 
 
+def plot_assembly(bench, out):
+    med = bench_medians(bench)
+    kinds = ["Tet4", "Tet10", "Tet20", "Hex8", "Hex20"]
+    materials = ["linear", "stvk", "corotated", "neohookean", "stable-neohookean"]
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
+    for ax, what in zip(axes, ("Energy", "Gradient", "Hessian")):
+        width = 0.15
+        for mi, mat in enumerate(materials):
+            rates = []
+            for ki in range(len(kinds)):
+                b = med.get(f"BM_Assemble{what}/{ki}/{mi}")
+                rates.append(b[2].get("qpoints_per_s", float("nan")) if b else float("nan"))
+            ax.bar(np.arange(len(kinds)) + (mi - 2) * width, rates, width, label=mat)
+        ax.set_xticks(np.arange(len(kinds)))
+        ax.set_xticklabels(kinds)
+        ax.set_yscale("log")
+        ax.set_ylabel("quadrature points / s")
+        ax.set_title(f"{what} assembly throughput")
+        ax.grid(True, axis="y", which="both", alpha=0.3)
+    axes[0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+
+
+def print_mms_table(report):
+    series = mms_series(report)
+    if not series:
+        return
+    print("\nmanufactured solutions (L2 / H1 errors, observed rates on consecutive pairs):")
+    for (prob, cell, order, mesh), pts in sorted(series.items()):
+        print(f"  {prob} {cell} p={order} {mesh}")
+        prev = None
+        for n, h, dofs, l2, h1, secs in pts:
+            rates = ""
+            if prev:
+                rl2 = math.log(prev[3] / l2) / math.log(prev[1] / h)
+                rh1 = math.log(prev[4] / h1) / math.log(prev[1] / h)
+                rates = f"  rates L2 {rl2:5.2f}  H1 {rh1:5.2f}"
+            print(f"    n={n:3d} dofs={int(dofs):8d}  L2 {l2:.3e}  H1 {h1:.3e}  {secs:7.2f} s{rates}")
+            prev = (n, h, dofs, l2, h1)
+
+
 def main():
     reports = Path(sys.argv[1] if len(sys.argv) > 1 else "reports")
     report = load(reports / "verification.json")
@@ -182,7 +302,11 @@ def main():
     plot_exactness(report, reports / "quadrature_exactness.png")
     plot_conditioning(report, reports / "basis_conditioning.png")
     plot_bench(bench, reports / "benchmark_foundation.png")
+    plot_convergence(report, reports / "mms_convergence.png")
+    plot_h1(report, reports / "mms_h1.png")
+    plot_assembly(bench, reports / "benchmark_assembly.png")
     summary(report, bench)
+    print_mms_table(report)
     print(f"\nplots: {', '.join(sorted(p.name for p in reports.glob('*.png')))}")
 
 

@@ -87,8 +87,8 @@ double element_gradient(const Material& mat, const BasisTabulation& tab, const E
   for (int q = 0; q < tab.num_points; ++q) {
     const double wq = reference_gradients(tab, w, q, ws);
     const Mat3 F = ws.x * ws.dNdX;
-    e += wq * mat.energy(F);
-    const Mat3 P = mat.stress(F);
+    Mat3 P;
+    e += wq * mat.evaluate(F, &P, nullptr);  // one call: psi and P share their work (SVD, cofactor)
     for (int i = 0; i < n; ++i) ws.g.template segment<3>(3 * i).noalias() += wq * P * ws.dNdX.row(i).transpose();
   }
   return e;
@@ -106,9 +106,9 @@ double element_hessian(const Material& mat, const BasisTabulation& tab, const Ei
   for (int q = 0; q < tab.num_points; ++q) {
     const double wq = reference_gradients(tab, w, q, ws);
     const Mat3 F = ws.x * ws.dNdX;
-    e += wq * mat.energy(F);
-    const Mat3 P = mat.stress(F);
-    Mat9 A = mat.stress_derivative(F);
+    Mat3 P;
+    Mat9 A;
+    e += wq * mat.evaluate(F, &P, &A);  // psi, P and dP/dF from one evaluation
     if (project_psd_at_points) A = project_psd(A);
     for (int j = 0; j < n; ++j) {
       ws.g.template segment<3>(3 * j).noalias() += wq * P * ws.dNdX.row(j).transpose();

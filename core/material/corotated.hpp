@@ -25,7 +25,8 @@
 // and dP = 2 mu (dF - dR) + lambda tr(R^T dF) R + lambda tr(S - I) dR.
 // (tr(S) I - S) has eigenvalues s_i + s_j (i != j); it is inverted through the SVD
 // with each denominator floored at 1e-10 max(|s_1|, 1) so the tangent stays finite
-// at the degenerate states named above (where it is meaningless anyway).
+// at the degenerate states named above and at F of rank <= 1 (where it is
+// meaningless anyway). The verification suite checks the factor by finite differences.
 #include "material/material.hpp"
 
 namespace hofem {

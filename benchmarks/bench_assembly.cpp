@@ -1,0 +1,135 @@
+// Assembly throughput: energy, gradient and Hessian per element type / order x
+// material, and sparsity-pattern construction on its own (it is done once per
+// mesh; the others run every Newton iteration). Counters: elements/s and
+// quadrature points/s (rates over the measured time), DOFs, nonzeros.
+#include "assembly/assembler.hpp"
+#include "material/material.hpp"
+#include "mesh/box_mesh.hpp"
+
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <thread>
+
+namespace {
+
+using namespace hofem;
+
+struct Setup {
+  Mesh mesh;
+  DofMap dofs;
+  std::unique_ptr<Assembler> assembler;
+  Eigen::VectorXd x;
+};
+
+// Element type index -> (cell, order, cubes per side): sizes give 10^4 - 10^5 DOFs.
+struct ElementKind {
+  CellType cell;
+  int order;
+  int n;
+  const char* label;
+};
+const ElementKind kKinds[] = {{CellType::Tetrahedron, 1, 16, "Tet4"},   {CellType::Tetrahedron, 2, 10, "Tet10"},
+                              {CellType::Tetrahedron, 3, 7, "Tet20"},   {CellType::Hexahedron, 1, 24, "Hex8"},
+                              {CellType::Hexahedron, 2, 12, "Hex20"}};
+
+// One mesh per kind, built once: a unit cube, xmin face clamped, deformed by a
+// smooth displacement so that F != I at every quadrature point.
+Setup& setup(int kind) {
+  static std::map<int, std::unique_ptr<Setup>> cache;
+  auto& s = cache[kind];
+  if (!s) {
+    s = std::make_unique<Setup>();
+    const ElementKind& k = kKinds[kind];
+    s->mesh = box_mesh(unit_cube(k.n), k.cell, k.order);
+    s->dofs = DofMap(s->mesh.num_nodes(), s->mesh.node_set("xmin"));
+    s->assembler = std::make_unique<Assembler>(s->mesh, s->dofs);
+    s->x.resize(3 * s->mesh.num_nodes());
+    for (int n = 0; n < s->mesh.num_nodes(); ++n) {
+      const Eigen::Vector3d X = s->mesh.nodes.col(n);
+      s->x.segment<3>(3 * n) = X + 0.05 * Eigen::Vector3d(std::sin(3 * X[1]), X[0] * X[2], std::cos(2 * X[0]) - 1);
+    }
+  }
+  return *s;
+}
+
+const char* kMaterials[] = {"linear", "stvk", "corotated", "neohookean", "stable-neohookean"};
+
+void set_counters(benchmark::State& state, const Setup& s) {
+  const double elements = s.mesh.num_elements();
+  const double points = elements * s.assembler->rule().size();
+  state.counters["elements_per_s"] = benchmark::Counter(elements, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["qpoints_per_s"] = benchmark::Counter(points, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["dofs"] = s.dofs.num_free();
+  state.counters["qpoints_per_element"] = s.assembler->rule().size();
+  state.SetLabel(std::string(kKinds[state.range(0)].label) + " " + kMaterials[state.range(1)]);
+}
+
+void BM_AssembleEnergy(benchmark::State& state) {
+  Setup& s = setup(static_cast<int>(state.range(0)));
+  const auto mat = make_material(kMaterials[state.range(1)], LameParameters::from_young_poisson(1.0, 0.3));
+  for (auto _ : state) benchmark::DoNotOptimize(s.assembler->energy(*mat, s.x));
+  set_counters(state, s);
+}
+
+void BM_AssembleGradient(benchmark::State& state) {
+  Setup& s = setup(static_cast<int>(state.range(0)));
+  const auto mat = make_material(kMaterials[state.range(1)], LameParameters::from_young_poisson(1.0, 0.3));
+  Eigen::VectorXd g;
+  for (auto _ : state) benchmark::DoNotOptimize(s.assembler->gradient(*mat, s.x, g));
+  set_counters(state, s);
+}
+
+void BM_AssembleHessian(benchmark::State& state) {
+  Setup& s = setup(static_cast<int>(state.range(0)));
+  const auto mat = make_material(kMaterials[state.range(1)], LameParameters::from_young_poisson(1.0, 0.3));
+  Eigen::VectorXd g;
+  SparseMatrix K = s.assembler->new_matrix();
+  for (auto _ : state) benchmark::DoNotOptimize(s.assembler->hessian(*mat, s.x, g, K, false));
+  set_counters(state, s);
+  state.counters["nonzeros"] = static_cast<double>(K.nonZeros());
+}
+
+BENCHMARK(BM_AssembleEnergy)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3, 4}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_AssembleGradient)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3, 4}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_AssembleHessian)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3, 4}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Hessian assembly with 1 and 2 OpenMP threads (Neo-Hookean): what the second core buys.
+void BM_AssembleHessianThreads(benchmark::State& state) {
+  Setup& s = setup(static_cast<int>(state.range(0)));
+  const auto mat = make_material("neohookean", LameParameters::from_young_poisson(1.0, 0.3));
+  const int previous = omp_get_max_threads();
+  omp_set_num_threads(static_cast<int>(state.range(1)));
+  Eigen::VectorXd g;
+  SparseMatrix K = s.assembler->new_matrix();
+  for (auto _ : state) benchmark::DoNotOptimize(s.assembler->hessian(*mat, s.x, g, K, false));
+  omp_set_num_threads(previous);
+  const double elements = s.mesh.num_elements();
+  state.counters["elements_per_s"] = benchmark::Counter(elements, benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel(std::string(kKinds[state.range(0)].label) + " neohookean threads=" + std::to_string(state.range(1)));
+}
+BENCHMARK(BM_AssembleHessianThreads)->ArgsProduct({{0, 2, 4}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Pattern, element-to-nonzero map and colouring: once per mesh.
+void BM_SparsityPattern(benchmark::State& state) {
+  Setup& s = setup(static_cast<int>(state.range(0)));
+  size_t map_bytes = 0;
+  std::int64_t nnz = 0;
+  for (auto _ : state) {
+    SparsityPattern p(s.mesh, s.dofs);
+    map_bytes = p.map_bytes();
+    nnz = p.nonzeros();
+    benchmark::DoNotOptimize(p);
+  }
+  state.counters["nonzeros"] = static_cast<double>(nnz);
+  state.counters["map_MB"] = static_cast<double>(map_bytes) / 1e6;
+  state.counters["elements_per_s"] =
+      benchmark::Counter(static_cast<double>(s.mesh.num_elements()), benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel(kKinds[state.range(0)].label);
+}
+BENCHMARK(BM_SparsityPattern)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
