@@ -4,6 +4,11 @@
 #include "run_verification.hpp"
 
 #include "basis/reference_basis.hpp"
+#include "mesh/box_mesh.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "mesh/mesh_quality.hpp"
+#include "mesh/mesh_upgrade.hpp"
+#include "mesh/vtu_writer.hpp"
 #include "quadrature/rule_library.hpp"
 
 #include <fmt/format.h>
@@ -100,6 +105,53 @@ int run_basis(const BasisOptions& o) {
   return 0;
 }
 
+int run_mesh(const MeshOptions& o) {
+  if ((o.box > 0) == !o.msh.empty()) throw UsageError("give exactly one of --box N or --msh FILE");
+  Mesh m;
+  if (o.box > 0) {
+    const CellType cell = parse_cell_or_throw(o.cell);
+    if (cell != CellType::Tetrahedron && cell != CellType::Hexahedron)
+      throw UsageError(fmt::format("--cell: box meshes are tet or hex, got '{}'", o.cell));
+    const int order = o.order == kUnset ? 1 : o.order;
+    if (order < 1 || (cell == CellType::Hexahedron && order > 2))
+      throw UsageError(fmt::format("--order: tet needs >= 1, hex 1 or 2; got {}", order));
+    m = box_mesh(unit_cube(o.box), cell, order);
+  } else {
+    m = read_gmsh(o.msh);
+    if (o.order != kUnset && o.order != m.order) {
+      if (m.order != 1) throw UsageError(fmt::format("--order: only a linear mesh can be raised, '{}' has order {}", o.msh, m.order));
+      m = upgrade_order(m, o.order);
+    }
+  }
+  validate_mesh(m);  // names the first inverted or degenerate element
+  const MeshQuality q = measure_quality(m);
+  const std::string element = lagrange_basis(m.cell, m.order).element_name();
+  if (!o.vtu.empty()) {
+    Eigen::MatrixXd ids(1, m.num_elements());
+    for (int e = 0; e < m.num_elements(); ++e) ids(0, e) = e;
+    write_vtu(o.vtu, m, {}, {{"element_id", ids}});
+  }
+  if (o.json) {
+    nlohmann::json sets = nlohmann::json::object();
+    for (const auto& [n, nodes] : m.node_sets) sets[n] = nodes.size();
+    fmt::print("{}\n", nlohmann::json{{"element", element}, {"nodes", m.num_nodes()}, {"elements", m.num_elements()},
+                                     {"node_sets", sets}, {"min_dihedral_degrees", q.min_dihedral_degrees},
+                                     {"max_dihedral_degrees", q.max_dihedral_degrees},
+                                     {"min_jacobian_ratio", q.min_jacobian_ratio}, {"worst_element", q.worst_element},
+                                     {"inverted_elements", q.inverted_elements}}
+                            .dump());
+    return 0;
+  }
+  fmt::print("{}: {} nodes, {} elements\n", element, m.num_nodes(), m.num_elements());
+  for (const auto& [n, nodes] : m.node_sets) fmt::print("  node set {:<12} {} nodes\n", n, nodes.size());
+  if (m.cell == CellType::Tetrahedron)
+    fmt::print("  dihedral angles {:.2f} .. {:.2f} degrees\n", q.min_dihedral_degrees, q.max_dihedral_degrees);
+  fmt::print("  min det J ratio {:.4f} (element {}), inverted elements {}\n", q.min_jacobian_ratio, q.worst_element,
+             q.inverted_elements);
+  if (!o.vtu.empty()) fmt::print("  wrote {}\n", o.vtu);
+  return 0;
+}
+
 int run_mms(const MmsOptions& o) {
   const CellType cell = parse_cell_or_throw(o.cell);
   if (cell != CellType::Tetrahedron && cell != CellType::Hexahedron)
@@ -131,8 +183,8 @@ int run_mms(const MmsOptions& o) {
 }
 
 int run_verify(const VerifyOptions& o) {
-  if (o.convergence != "none" && o.convergence != "ci" && o.convergence != "full")
-    throw UsageError(fmt::format("--convergence: unknown preset '{}' (valid: none, ci, full)", o.convergence));
+  if (o.convergence != "none" && o.convergence != "ci" && o.convergence != "full" && o.convergence != "complete")
+    throw UsageError(fmt::format("--convergence: unknown preset '{}' (valid: none, ci, full, complete)", o.convergence));
   verification::Report report = verification::run_all_checks({o.convergence});
   nlohmann::json j = report.to_json();
   if (!o.group.empty()) {

@@ -29,6 +29,16 @@ struct BasisOptions {
 };
 int run_basis(const BasisOptions& o);
 
+struct MeshOptions {
+  int box = 0;
+  std::string msh;
+  std::string cell = "tet";
+  int order = kUnset;
+  std::string vtu;
+  bool json = false;
+};
+int run_mesh(const MeshOptions& o);
+
 struct MmsOptions {
   std::string problem;
   int order = 1;

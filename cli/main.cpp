@@ -3,6 +3,8 @@
 //   hofem quadrature --cell tet --degree 8 [--json]   the rule a query returns
 //   hofem quadrature --cell tet --list                every tabulated rule of a cell
 //   hofem basis --cell tet --order 3 [--json]         Lagrange nodes in Gmsh order
+//   hofem mesh --box 4 --cell tet --order 2 | --msh FILE [--vtu out.vtu]
+//                                                     element quality report
 //   hofem mms --problem linear --order 2 --n 8 [--cell tet|hex] [--json]
 //                                                     manufactured-solution errors
 //   hofem verify [--out reports/verification.json]    the verification suite
@@ -36,6 +38,15 @@ int main(int argc, char** argv) {
   basis->add_option("--order", bo.order, "Polynomial order (>= 1; hex: 1 = Hex8, 2 = Hex20)")->required();
   basis->add_flag("--json", bo.json, "Print JSON");
 
+  hofem::cli::MeshOptions meo;
+  auto* mesh = app.add_subcommand("mesh", "Build or read a mesh, report its element quality, optionally write VTU");
+  mesh->add_option("--box", meo.box, "Unit cube with N cells per side");
+  mesh->add_option("--msh", meo.msh, "Gmsh .msh file (4.1 or 2.2 ASCII)");
+  mesh->add_option("--cell", meo.cell, "Box mesh cells: tet or hex")->capture_default_str();
+  mesh->add_option("--order", meo.order, "Element order (box: any for tet, 1-2 for hex; msh: raise a linear mesh to it)");
+  mesh->add_option("--vtu", meo.vtu, "Write the mesh to this .vtu file");
+  mesh->add_flag("--json", meo.json, "Print JSON");
+
   hofem::cli::MmsOptions mo;
   auto* mms = app.add_subcommand("mms", "Solve a manufactured-solution problem on the unit cube and print its errors");
   mms->add_option("--problem", mo.problem, "linear or neohookean")->required();
@@ -51,7 +62,7 @@ int main(int argc, char** argv) {
   verify->add_option("--out", vo.out, "Report path")->capture_default_str();
   verify->add_option("--group", vo.group, "Only report rows whose group starts with this prefix");
   verify->add_flag("--quiet", vo.quiet, "Print only the summary line");
-  verify->add_option("--convergence", vo.convergence, "Manufactured-solution study: none, ci or full")->capture_default_str();
+  verify->add_option("--convergence", vo.convergence, "Manufactured-solution study: none, ci, full or complete")->capture_default_str();
 
   // CLI11 reports an unknown first word as "a subcommand is required"; name it instead.
   if (argc > 1 && argv[1][0] != '-') {
@@ -59,7 +70,7 @@ int main(int argc, char** argv) {
     bool known = false;
     for (const auto* sub : app.get_subcommands({})) known = known || sub->get_name() == first;
     if (!known) {
-      fmt::print(stderr, "hofem: error: unknown subcommand '{}' (valid: quadrature, basis, mms, verify)\n", first);
+      fmt::print(stderr, "hofem: error: unknown subcommand '{}' (valid: quadrature, basis, mesh, mms, verify)\n", first);
       return 2;
     }
   }
@@ -81,6 +92,7 @@ int main(int argc, char** argv) {
     if (*basis) return hofem::cli::run_basis(bo);
     if (*verify) return hofem::cli::run_verify(vo);
     if (*mms) return hofem::cli::run_mms(mo);
+    if (*mesh) return hofem::cli::run_mesh(meo);
   } catch (const hofem::cli::UsageError& e) {
     fmt::print(stderr, "hofem: error: {}\n", e.what());
     return 2;

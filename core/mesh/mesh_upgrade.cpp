@@ -71,15 +71,12 @@ void extend_node_sets(const Mesh& linear, Mesh& out, const std::vector<Key>& key
   std::set<int> boundary_vertices;
   for (const auto& f : faces)
     for (int v : f) faces_of_vertex[v].push_back(&f), boundary_vertices.insert(v);
-  auto on_boundary_face_within = [&](const std::vector<int>& verts, const std::vector<char>* in_set) {
+  // Whether a key's vertices lie together on one boundary face.
+  auto on_boundary_face = [&](const std::vector<int>& verts) {
     for (const auto* f : faces_of_vertex[verts[0]]) {
       bool contains = true;
       for (int v : verts) contains = contains && std::binary_search(f->begin(), f->end(), v);
-      if (!contains) continue;
-      bool inside = true;
-      if (in_set)
-        for (int v : *f) inside = inside && (*in_set)[v];
-      if (inside) return true;
+      if (contains) return true;
     }
     return false;
   };
@@ -87,23 +84,33 @@ void extend_node_sets(const Mesh& linear, Mesh& out, const std::vector<Key>& key
   out.node_sets.clear();
   for (const auto& [name, nodes] : linear.node_sets) {
     if (name == "boundary") continue;
-    std::vector<char> in(nv, 0);
-    for (int v : nodes) in[v] = 1;
-    std::vector<int> members(nodes.begin(), nodes.end());
-    for (size_t n = 0; n < keys.size(); ++n) {
-      const auto verts = key_vertices(keys[n]);
-      if (verts.size() < 2) continue;  // vertices keep their own membership
-      bool all = true;
-      for (int v : verts) all = all && in[v];
-      if (all && on_boundary_face_within(verts, &in)) members.push_back(static_cast<int>(n));
+    std::vector<int> members;
+    if (const auto es = linear.element_sets.find(name); es != linear.element_sets.end()) {
+      // A volume group: every node of its elements.
+      for (int e : es->second)
+        for (int i = 0; i < out.nodes_per_element(); ++i) members.push_back(out.elements(i, e));
+    } else {
+      // A surface, curve or point group: new nodes whose key vertices are all in
+      // the group and lie together on a boundary face.
+      std::vector<char> in(nv, 0);
+      for (int v : nodes) in[v] = 1;
+      members.assign(nodes.begin(), nodes.end());
+      for (size_t n = 0; n < keys.size(); ++n) {
+        const auto verts = key_vertices(keys[n]);
+        if (verts.size() < 2) continue;  // vertices keep their own membership
+        bool all = true;
+        for (int v : verts) all = all && in[v];
+        if (all && on_boundary_face(verts)) members.push_back(static_cast<int>(n));
+      }
     }
     std::sort(members.begin(), members.end());
+    members.erase(std::unique(members.begin(), members.end()), members.end());
     out.node_sets[name] = std::move(members);
   }
   std::vector<int> boundary(boundary_vertices.begin(), boundary_vertices.end());
   for (size_t n = 0; n < keys.size(); ++n) {
     const auto verts = key_vertices(keys[n]);
-    if (verts.size() >= 2 && on_boundary_face_within(verts, nullptr)) boundary.push_back(static_cast<int>(n));
+    if (verts.size() >= 2 && on_boundary_face(verts)) boundary.push_back(static_cast<int>(n));
   }
   std::sort(boundary.begin(), boundary.end());
   out.node_sets["boundary"] = std::move(boundary);

@@ -15,10 +15,12 @@
 namespace hofem {
 
 /// Order-p copy of a linear (order 1) mesh. Vertex ids are kept (0..V-1) and the
-/// new nodes follow. Node sets: a new node joins a set when every vertex of its
-/// key is in the set and the key lies on a boundary face whose vertices are all
-/// in the set (so surface groups gain their edge/face nodes, and an interior edge
-/// between two boundary vertices does not); "boundary" is rebuilt topologically.
+/// new nodes follow. Node sets: a set with an element set of the same name (a
+/// volume group) gets every node of those elements; any other set gains a new
+/// node when every vertex of its key is in the set and those vertices lie
+/// together on one boundary face (so surface and curve groups gain their edge
+/// and face nodes, and an interior edge between two boundary vertices does not).
+/// "boundary" is rebuilt topologically (faces used by one element).
 Mesh upgrade_order(const Mesh& linear, int order);
 
 }  // namespace hofem

@@ -121,8 +121,10 @@ StaticReport StaticElasticity::solve() {
   const auto t0 = Clock::now();
   assembly_seconds_ = 0.0;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(dofs_.num_free());
+  // Adaptive load stepping: a failed step is retried at half the size (up to
+  // max_load_halvings times in a row); after a success the step doubles again.
   double done = 0.0, step = 1.0;
-  int halvings = 0;
+  int failures_in_a_row = 0;
   while (done < 1.0) {
     const double target = std::min(1.0, done + step);
     step_force_ = 0.0;
@@ -135,10 +137,12 @@ StaticReport StaticElasticity::solve() {
       u = trial;
       done = load_;
       ++report.load_steps;
+      failures_in_a_row = 0;
+      step = std::min(2.0 * step, 1.0);
       continue;
     }
-    if (++halvings > options_.max_load_halvings) {
-      report.message = fmt::format("failed at load {:.4f}: {}", load_, r.message);
+    if (++failures_in_a_row > options_.max_load_halvings) {
+      report.message = fmt::format("failed at load {:.4f} after {} halvings: {}", load_, options_.max_load_halvings, r.message);
       break;
     }
     step *= 0.5;

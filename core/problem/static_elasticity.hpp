@@ -32,7 +32,7 @@ struct StaticOptions {
   int load_degree = -1;        ///< body-force integration; < 0: 2p + 2
   std::string linear_solver = "cholmod";
   NewtonOptions newton;
-  int max_load_halvings = 6;   ///< load stepping: up to 2^6 sub-steps
+  int max_load_halvings = 6;   ///< a failed load step is halved at most this many times in a row
   /// Tangent predictor at each load step: u += -K^-1 (dg/dload) dload, with K at
   /// the last converged state. Without it the prescribed boundary displacement
   /// arrives as a jump that folds the boundary layer of elements; with it the

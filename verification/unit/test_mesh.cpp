@@ -1,5 +1,6 @@
 // Box meshes, order upgrade (shared nodes), quality checks and their errors.
 #include "mesh/box_mesh.hpp"
+#include "mesh/gmsh_reader.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "mesh/mesh_upgrade.hpp"
 
@@ -109,6 +110,23 @@ TEST(MeshQuality, ReportsAnglesAndRejectsInvertedAndDegenerateElements) {
   Mesh nan_mesh = box_tet_mesh(unit_cube(1));
   nan_mesh.nodes(0, 0) = std::nan("");
   EXPECT_THROW(validate_mesh(nan_mesh), MeshError);
+}
+
+}  // namespace
+}  // namespace hofem
+
+namespace hofem {
+namespace {
+
+// Physical groups survive the upgrade: a volume group gets every node, a curve
+// group its edge nodes, a surface group its edge and face nodes.
+TEST(MeshUpgrade, GmshPhysicalGroupsGainTheirHighOrderNodes) {
+  const Mesh linear = read_gmsh(std::string(HOFEM_TEST_DATA_DIR) + "/gmsh_cube_tet4_v41.msh");
+  const Mesh cubic = upgrade_order(linear, 3);
+  EXPECT_EQ(cubic.node_set("solid").size(), static_cast<size_t>(cubic.num_nodes()));
+  EXPECT_EQ(cubic.node_set("physical_7").size(), linear.node_set("physical_7").size() + 2);  // one edge, 2 nodes
+  for (int n : cubic.node_set("bottom")) EXPECT_NEAR(cubic.nodes(2, n), 0.0, 1e-15);
+  EXPECT_EQ(cubic.node_set("bottom").size(), 16u);  // the z = 0 square split in two triangles, cubic: 4 x 4 lattice
 }
 
 }  // namespace
