@@ -161,13 +161,14 @@ int run_mms(const MmsOptions& o) {
   if (o.n < 1) throw UsageError(fmt::format("--n must be >= 1, got {}", o.n));
   if (o.order < 1 || (cell == CellType::Hexahedron && o.order > 2))
     throw UsageError(fmt::format("--order: tet needs >= 1, hex 1 or 2; got {}", o.order));
-  verification::MmsCase c{o.problem, cell, o.order, o.n, o.perturbed, o.solver};
+  verification::MmsCase c{o.problem, cell, o.order, o.n, o.perturbed, o.solver, o.vtu};
   const verification::MmsResult r = verification::run_mms(c);
   if (o.json) {
     fmt::print("{}\n", nlohmann::json{{"problem", o.problem}, {"cell", std::string(name(cell))}, {"order", o.order}, {"n", o.n},
                                      {"perturbed", o.perturbed}, {"h", r.h}, {"cells", r.cells}, {"nodes", r.nodes},
                                      {"dofs", r.dofs}, {"l2_error", r.l2_error}, {"h1_error", r.h1_error},
                                      {"newton_iterations", r.newton_iterations}, {"converged", r.converged},
+                                     {"newton_residuals", r.newton_residuals},
                                      {"quadrature_degree", r.quadrature_degree}, {"error_quadrature_degree", r.error_degree},
                                      {"setup_seconds", r.setup_seconds}, {"assembly_seconds", r.assembly_seconds},
                                      {"solve_seconds", r.solve_seconds}, {"total_seconds", r.total_seconds},
@@ -183,8 +184,8 @@ int run_mms(const MmsOptions& o) {
 }
 
 int run_verify(const VerifyOptions& o) {
-  if (o.convergence != "none" && o.convergence != "ci" && o.convergence != "full" && o.convergence != "complete")
-    throw UsageError(fmt::format("--convergence: unknown preset '{}' (valid: none, ci, full, complete)", o.convergence));
+  if (o.convergence != "none" && o.convergence != "ci" && o.convergence != "full")
+    throw UsageError(fmt::format("--convergence: unknown preset '{}' (valid: none, ci, full)", o.convergence));
   verification::Report report = verification::run_all_checks({o.convergence});
   nlohmann::json j = report.to_json();
   if (!o.group.empty()) {

@@ -47,6 +47,7 @@ struct MmsOptions {
   bool perturbed = false;
   std::string solver = "cholmod";
   bool json = false;
+  std::string vtu;
 };
 int run_mms(const MmsOptions& o);
 

@@ -56,13 +56,14 @@ int main(int argc, char** argv) {
   mms->add_flag("--perturbed", mo.perturbed, "Randomly perturb interior vertices (non-uniform mesh)");
   mms->add_option("--solver", mo.solver, "Linear solver: cholmod or eigen-ldlt")->capture_default_str();
   mms->add_flag("--json", mo.json, "Print JSON");
+  mms->add_option("--vtu", mo.vtu, "Write the solution (displacement, exact displacement, L2 error per cell) to this .vtu");
 
   hofem::cli::VerifyOptions vo;
   auto* verify = app.add_subcommand("verify", "Run the verification suite and write its JSON report");
   verify->add_option("--out", vo.out, "Report path")->capture_default_str();
   verify->add_option("--group", vo.group, "Only report rows whose group starts with this prefix");
   verify->add_flag("--quiet", vo.quiet, "Print only the summary line");
-  verify->add_option("--convergence", vo.convergence, "Manufactured-solution study: none, ci, full or complete")->capture_default_str();
+  verify->add_option("--convergence", vo.convergence, "Manufactured-solution study: none, ci or full")->capture_default_str();
 
   // CLI11 reports an unknown first word as "a subcommand is required"; name it instead.
   if (argc > 1 && argv[1][0] != '-') {

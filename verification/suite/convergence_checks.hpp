@@ -19,8 +19,7 @@ struct ConvergenceSeries {
 };
 
 /// "ci": sizes chosen so the whole study runs in about a minute on 2 cores;
-/// "full": the sequences n = 2, 4, 8, 16 (order 1 also 32) except
-/// Neo-Hookean order 3 at n = 16 (~30 min with a direct solver); "complete": all.
+/// "full": the sequences n = 2, 4, 8, 16 (order 1 also 32), ~20 min.
 std::vector<ConvergenceSeries> convergence_series(const std::string& preset);
 
 /// Runs every series; adds one measurement per run (errors, DOFs, seconds) and

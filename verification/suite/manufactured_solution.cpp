@@ -5,6 +5,7 @@
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/mesh_upgrade.hpp"
+#include "mesh/vtu_writer.hpp"
 #include "problem/static_elasticity.hpp"
 #include "quadrature/rule_library.hpp"
 
@@ -137,6 +138,8 @@ MmsResult run_mms(const MmsCase& c) {
   r.assembly_seconds = rep.assembly_seconds;
   r.solve_seconds = rep.solve_seconds;
   r.quadrature_degree = opt.quadrature_degree;
+  for (const auto& step : rep.steps)
+    for (const auto& it : step.history) r.newton_residuals.push_back(it.residual);
 
   // Errors with a rule of degree >= p + 3 (issue 3), over the isoparametric map.
   r.error_degree = std::max(mesh.order + 3, 2 * mesh.order);
@@ -144,6 +147,7 @@ MmsResult run_mms(const MmsCase& c) {
   const BasisTabulation& tab = cached_tabulation(mesh.cell, mesh.order, r.error_degree);
   const Eigen::VectorXd& u = problem.displacement();
   double l2 = 0.0, h1 = 0.0;
+  Eigen::MatrixXd cell_l2(1, mesh.num_elements());  // per-element L2 error, for the VTU output
   const int n = mesh.nodes_per_element();
   Eigen::Matrix3Xd X(3, n), U(3, n);
   for (int e = 0; e < mesh.num_elements(); ++e) {
@@ -151,14 +155,24 @@ MmsResult run_mms(const MmsCase& c) {
       X.col(i) = mesh.nodes.col(mesh.elements(i, e));
       U.col(i) = u.segment<3>(3 * mesh.elements(i, e));
     }
+    double element_l2 = 0.0;
     for (int k = 0; k < rule.size(); ++k) {
       const Eigen::Matrix3d J = X * tab.gradient(k);
       const double w = rule.weights[k] * J.determinant();
       const Eigen::MatrixXd dNdX = tab.gradient(k) * J.inverse();
       const Eigen::Vector3d Xq = X * tab.values.col(k);
-      l2 += w * (U * tab.values.col(k) - ustar.value(Xq)).squaredNorm();
+      const double e2 = w * (U * tab.values.col(k) - ustar.value(Xq)).squaredNorm();
+      l2 += e2;
+      element_l2 += e2;
       h1 += w * (U * dNdX - ustar.gradient(Xq)).squaredNorm();
     }
+    cell_l2(0, e) = std::sqrt(element_l2);
+  }
+  if (!c.vtu.empty()) {
+    Eigen::MatrixXd disp = Eigen::Map<const Eigen::MatrixXd>(u.data(), 3, mesh.num_nodes());
+    Eigen::MatrixXd exact(3, mesh.num_nodes());
+    for (int i = 0; i < mesh.num_nodes(); ++i) exact.col(i) = ustar.value(mesh.nodes.col(i));
+    write_vtu(c.vtu, mesh, {{"displacement", disp}, {"exact_displacement", exact}}, {{"l2_error", cell_l2}});
   }
   r.l2_error = std::sqrt(l2);
   r.h1_error = std::sqrt(h1);

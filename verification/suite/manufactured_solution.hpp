@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <vector>
 
 namespace hofem::verification {
 
@@ -34,6 +35,7 @@ struct MmsCase {
   int n = 4;                  ///< cubes per side
   bool perturbed = false;     ///< random interior-vertex perturbation (non-uniform mesh)
   std::string linear_solver = "cholmod";
+  std::string vtu;            ///< if set, write the solution (displacement, error) to this .vtu file
 };
 
 struct MmsResult {
@@ -44,6 +46,7 @@ struct MmsResult {
   bool converged = false;
   double setup_seconds = 0.0, assembly_seconds = 0.0, solve_seconds = 0.0, total_seconds = 0.0;
   int quadrature_degree = 0, error_degree = 0;
+  std::vector<double> newton_residuals;  ///< |g| before each Newton step, all load steps
   std::string message;
 };
 
