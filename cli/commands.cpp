@@ -127,6 +127,7 @@ int run_mesh(const MeshOptions& o) {
   const MeshQuality q = measure_quality(m);
   const std::string element = lagrange_basis(m.cell, m.order).element_name();
   if (!o.vtu.empty()) {
+    if (const std::filesystem::path out(o.vtu); out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
     Eigen::MatrixXd ids(1, m.num_elements());
     for (int e = 0; e < m.num_elements(); ++e) ids(0, e) = e;
     write_vtu(o.vtu, m, {}, {{"element_id", ids}});
@@ -161,6 +162,8 @@ int run_mms(const MmsOptions& o) {
   if (o.n < 1) throw UsageError(fmt::format("--n must be >= 1, got {}", o.n));
   if (o.order < 1 || (cell == CellType::Hexahedron && o.order > 2))
     throw UsageError(fmt::format("--order: tet needs >= 1, hex 1 or 2; got {}", o.order));
+  if (!o.vtu.empty())
+    if (const std::filesystem::path out(o.vtu); out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
   verification::MmsCase c{o.problem, cell, o.order, o.n, o.perturbed, o.solver, o.vtu};
   const verification::MmsResult r = verification::run_mms(c);
   if (o.json) {
