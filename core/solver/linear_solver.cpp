@@ -1,6 +1,7 @@
 #include "solver/linear_solver.hpp"
 
 #include "solver/cholmod_solver.hpp"
+#include "solver/krylov.hpp"
 
 #include <Eigen/SparseCholesky>
 #include <fmt/format.h>
@@ -37,12 +38,24 @@ class EigenLdltSolver final : public LinearSolver {
 
 }  // namespace
 
-std::vector<std::string> linear_solver_names() { return {"cholmod", "eigen-ldlt"}; }
+std::vector<std::string> linear_solver_names() {
+  std::vector<std::string> names{"cholmod", "eigen-ldlt"};
+  for (const char* method : {"cg", "cr", "minres", "gmres"})
+    for (const std::string& pc : preconditioner_names()) names.push_back(std::string(method) + "+" + pc);
+  return names;
+}
 
 std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name) {
   if (name == "cholmod") return std::make_unique<CholmodSolver>();
   if (name == "eigen-ldlt") return std::make_unique<EigenLdltSolver>();
-  throw std::invalid_argument(fmt::format("unknown linear solver '{}' (valid: cholmod, eigen-ldlt)", name));
+  // "<krylov method>+<preconditioner>", e.g. "cg+ic0".
+  if (const size_t plus = name.find('+'); plus != std::string_view::npos) {
+    const std::string method(name.substr(0, plus)), pc(name.substr(plus + 1));
+    if ((method == "cg" || method == "cr" || method == "minres" || method == "gmres"))
+      return std::make_unique<KrylovSolver>(method, pc);
+  }
+  throw std::invalid_argument(fmt::format(
+      "unknown linear solver '{}' (valid: cholmod, eigen-ldlt, or <cg|cr|minres|gmres>+<none|jacobi|block-jacobi|ic0>)", name));
 }
 
 }  // namespace hofem

@@ -33,9 +33,10 @@ class LinearSolver {
   int factorizations_ = 0;
 };
 
-/// "cholmod" (supernodal Cholesky, SuiteSparse, 64-bit indices) or "eigen-ldlt"
-/// (Eigen's SimplicialLDLT, for comparison and small problems). Throws
-/// std::invalid_argument naming the valid choices.
+/// "cholmod" (supernodal Cholesky, SuiteSparse, 64-bit indices), "eigen-ldlt"
+/// (Eigen's SimplicialLDLT, for comparison and small problems), or a Krylov
+/// method with a preconditioner, "<cg|cr|minres|gmres>+<none|jacobi|block-jacobi|ic0>"
+/// (solver/krylov.hpp). Throws std::invalid_argument naming the valid choices.
 std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name);
 std::vector<std::string> linear_solver_names();
 

@@ -1,0 +1,257 @@
+#include "solver/krylov.hpp"
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace hofem {
+
+namespace {
+
+double safe_norm(const Eigen::VectorXd& b) {
+  const double n = b.norm();
+  return n > 0.0 ? n : 1.0;
+}
+
+}  // namespace
+
+// Thesis Algorithm 4 (preconditioned CG).
+KrylovResult conjugate_gradient(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                const Preconditioner& M, const KrylovOptions& opt) {
+  KrylovResult res;
+  if (x.size() != b.size()) x.setZero(b.size());
+  const double bn = safe_norm(b);
+  Eigen::VectorXd r = b - A * x, z, Ap;
+  M.apply(r, z);
+  Eigen::VectorXd p = z;
+  double rz = r.dot(z);
+  res.history.push_back(r.norm() / bn);
+  for (int k = 0; k < opt.max_iterations; ++k) {
+    if (res.history.back() <= opt.rtol) break;
+    Ap.noalias() = A * p;
+    const double pAp = p.dot(Ap);
+    if (!(pAp > 0.0)) {  // negative (or zero) curvature: A is not positive definite
+      res.breakdown = fmt::format("CG: p^T A p = {:.3e} <= 0 at iteration {} (matrix not positive definite)", pAp, k);
+      break;
+    }
+    const double alpha = rz / pAp;
+    x.noalias() += alpha * p;
+    r.noalias() -= alpha * Ap;
+    M.apply(r, z);
+    const double rz_new = r.dot(z);
+    p = z + (rz_new / rz) * p;
+    rz = rz_new;
+    ++res.iterations;
+    res.history.push_back(r.norm() / bn);
+  }
+  res.relative_residual = res.history.back();
+  res.converged = res.breakdown.empty() && res.relative_residual <= opt.rtol;
+  return res;
+}
+
+// Thesis Algorithm 5 (preconditioned conjugate residuals): minimises the residual
+// in the A-norm of the preconditioned system; needs A symmetric, not definite.
+KrylovResult conjugate_residual(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                const Preconditioner& M, const KrylovOptions& opt) {
+  KrylovResult res;
+  if (x.size() != b.size()) x.setZero(b.size());
+  const double bn = safe_norm(b);
+  Eigen::VectorXd r = b - A * x, z, q;
+  M.apply(r, z);  // z = M^-1 r
+  Eigen::VectorXd Az = A * z, p = z, Ap = Az;
+  double zAz = z.dot(Az);
+  res.history.push_back(r.norm() / bn);
+  for (int k = 0; k < opt.max_iterations; ++k) {
+    if (res.history.back() <= opt.rtol) break;
+    M.apply(Ap, q);  // q = M^-1 A p
+    const double denom = Ap.dot(q);
+    if (denom == 0.0 || !std::isfinite(denom) || zAz == 0.0) {
+      res.breakdown = fmt::format("CR: breakdown at iteration {} ((Ap, M^-1 Ap) = {:.3e}, (z, Az) = {:.3e})", k, denom, zAz);
+      break;
+    }
+    const double alpha = zAz / denom;
+    x.noalias() += alpha * p;
+    r.noalias() -= alpha * Ap;
+    z.noalias() -= alpha * q;
+    Az.noalias() = A * z;
+    const double zAz_new = z.dot(Az);
+    const double beta = zAz_new / zAz;
+    p = z + beta * p;
+    Ap = Az + beta * Ap;
+    zAz = zAz_new;
+    ++res.iterations;
+    res.history.push_back(r.norm() / bn);
+  }
+  res.relative_residual = res.history.back();
+  res.converged = res.breakdown.empty() && res.relative_residual <= opt.rtol;
+  return res;
+}
+
+// Preconditioned MINRES (Paige & Saunders 1975; the recurrences as in Choi,
+// Paige & Saunders 2011, Table 2.1). M must be SPD; A symmetric, possibly
+// indefinite. The residual norm is the method's own estimate (in the M^-1 norm
+// scaled back), checked against the true residual at the end.
+KrylovResult minres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
+                    const KrylovOptions& opt) {
+  KrylovResult res;
+  const Eigen::Index n = b.size();
+  if (x.size() != n) x.setZero(n);
+  const double bn = safe_norm(b);
+  Eigen::VectorXd r1 = b - A * x, y, r2, v, w = Eigen::VectorXd::Zero(n), w1 = w, w2 = w;
+  M.apply(r1, y);
+  double beta1 = r1.dot(y);
+  res.history.push_back(r1.norm() / bn);
+  if (beta1 < 0.0) {
+    res.breakdown = "MINRES: preconditioner is not positive definite";
+    res.relative_residual = res.history.back();
+    return res;
+  }
+  beta1 = std::sqrt(beta1);
+  if (beta1 == 0.0) {
+    res.converged = true;
+    return res;
+  }
+  r2 = r1;
+  double oldb = 0.0, beta = beta1, dbar = 0.0, epsln = 0.0, phibar = beta1, cs = -1.0, sn = 0.0;
+  // The estimate phibar is in the M^-1 norm; scale it to the 2-norm of r by the
+  // ratio at the start (exact for M = I) and confirm with the true residual.
+  const double scale = res.history.front() / phibar;
+  Eigen::VectorXd Av;
+  for (int k = 0; k < opt.max_iterations; ++k) {
+    if (phibar * scale <= opt.rtol) break;
+    const double s = 1.0 / beta;
+    v = s * y;
+    Av.noalias() = A * v;
+    if (k > 0) Av -= (beta / oldb) * r1;
+    const double alfa = v.dot(Av);
+    Av -= (alfa / beta) * r2;
+    r1 = r2;
+    r2 = Av;
+    M.apply(r2, y);
+    oldb = beta;
+    beta = r2.dot(y);
+    if (beta < 0.0) {
+      res.breakdown = "MINRES: preconditioner is not positive definite";
+      break;
+    }
+    beta = std::sqrt(beta);
+    const double oldeps = epsln;
+    const double delta = cs * dbar + sn * alfa;
+    const double gbar = sn * dbar - cs * alfa;
+    epsln = sn * beta;
+    dbar = -cs * beta;
+    const double gamma = std::max(std::hypot(gbar, beta), 1e-300);
+    cs = gbar / gamma;
+    sn = beta / gamma;
+    const double phi = cs * phibar;
+    phibar = sn * phibar;
+    w1 = w2;
+    w2 = w;
+    w = (v - oldeps * w1 - delta * w2) / gamma;
+    x.noalias() += phi * w;
+    ++res.iterations;
+    res.history.push_back(phibar * scale);
+    if (beta == 0.0) break;  // exact Krylov space exhausted: x is the solution
+  }
+  res.relative_residual = (b - A * x).norm() / bn;
+  res.converged = res.breakdown.empty() && res.relative_residual <= 10.0 * opt.rtol;
+  return res;
+}
+
+// Thesis Algorithm 6, restarted GMRES(m) with right preconditioning (so the
+// monitored residual is the true one), modified Gram–Schmidt and Givens rotations.
+KrylovResult gmres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
+                   const KrylovOptions& opt) {
+  KrylovResult res;
+  const Eigen::Index n = b.size();
+  if (x.size() != n) x.setZero(n);
+  const double bn = safe_norm(b);
+  const int m = std::max(1, opt.restart);
+  Eigen::MatrixXd V(n, m + 1), H = Eigen::MatrixXd::Zero(m + 1, m);
+  Eigen::VectorXd cs(m), sn(m), g(m + 1), z, w;
+  Eigen::VectorXd r = b - A * x;
+  double beta = r.norm();
+  res.history.push_back(beta / bn);
+  while (res.iterations < opt.max_iterations && res.history.back() > opt.rtol) {
+    V.col(0) = r / beta;
+    g.setZero();
+    g[0] = beta;
+    int j = 0;
+    for (; j < m && res.iterations < opt.max_iterations; ++j) {
+      M.apply(V.col(j), z);
+      w.noalias() = A * z;
+      for (int i = 0; i <= j; ++i) {
+        H(i, j) = w.dot(V.col(i));
+        w.noalias() -= H(i, j) * V.col(i);
+      }
+      H(j + 1, j) = w.norm();
+      if (H(j + 1, j) > 0.0) V.col(j + 1) = w / H(j + 1, j);
+      for (int i = 0; i < j; ++i) {  // apply earlier rotations
+        const double t = cs[i] * H(i, j) + sn[i] * H(i + 1, j);
+        H(i + 1, j) = -sn[i] * H(i, j) + cs[i] * H(i + 1, j);
+        H(i, j) = t;
+      }
+      const double d = std::hypot(H(j, j), H(j + 1, j));
+      if (d == 0.0) {
+        res.breakdown = fmt::format("GMRES: breakdown at iteration {} (singular Hessenberg matrix)", res.iterations);
+        break;
+      }
+      cs[j] = H(j, j) / d;
+      sn[j] = H(j + 1, j) / d;
+      H(j, j) = d;
+      H(j + 1, j) = 0.0;
+      g[j + 1] = -sn[j] * g[j];
+      g[j] = cs[j] * g[j];
+      ++res.iterations;
+      res.history.push_back(std::fabs(g[j + 1]) / bn);
+      if (res.history.back() <= opt.rtol) {
+        ++j;
+        break;
+      }
+    }
+    if (j == 0) break;
+    // x += M^-1 V y with H y = g (upper triangular j x j).
+    const Eigen::VectorXd y = H.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
+    M.apply(V.leftCols(j) * y, z);
+    x.noalias() += z;
+    r = b - A * x;
+    beta = r.norm();
+    res.history.back() = beta / bn;  // true residual at the restart
+    if (!res.breakdown.empty()) break;
+  }
+  res.relative_residual = res.history.back();
+  res.converged = res.breakdown.empty() && res.relative_residual <= opt.rtol;
+  return res;
+}
+
+KrylovSolver::KrylovSolver(std::string method, std::string preconditioner, KrylovOptions options)
+    : method_(std::move(method)), M_(make_preconditioner(preconditioner)), options_(options) {
+  if (method_ != "cg" && method_ != "cr" && method_ != "minres" && method_ != "gmres")
+    throw std::invalid_argument(fmt::format("unknown Krylov method '{}' (valid: cg, cr, minres, gmres)", method_));
+  name_ = method_ + "+" + std::string(M_->name());
+}
+
+void KrylovSolver::analyze(const SparseMatrix&) { ++analyses_; }
+
+bool KrylovSolver::factorize(const SparseMatrix& A) {
+  ++factorizations_;
+  A_ = &A;
+  return M_->setup(A);
+}
+
+void KrylovSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (!A_) throw std::logic_error("KrylovSolver::solve before factorize");
+  x.setZero(b.size());
+  if (method_ == "cg") last_ = conjugate_gradient(*A_, b, x, *M_, options_);
+  else if (method_ == "cr") last_ = conjugate_residual(*A_, b, x, *M_, options_);
+  else if (method_ == "minres") last_ = minres(*A_, b, x, *M_, options_);
+  else last_ = gmres(*A_, b, x, *M_, options_);
+  if (!last_.converged)
+    throw std::runtime_error(fmt::format("{}: no convergence ({} iterations, relative residual {:.3e}){}{}", name_,
+                                         last_.iterations, last_.relative_residual, last_.breakdown.empty() ? "" : ": ",
+                                         last_.breakdown));
+}
+
+}  // namespace hofem

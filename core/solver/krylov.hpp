@@ -1,0 +1,61 @@
+#pragma once
+// Preconditioned Krylov solvers (thesis §3.2): conjugate gradients (Alg. 4),
+// conjugate residuals (Alg. 5), MINRES (Paige & Saunders 1975) and restarted
+// GMRES(m) (Alg. 6). Each stops on the relative residual ||b - A x|| / ||b||,
+// caps its iterations, records the residual history, and reports a breakdown
+// instead of returning garbage (CG meeting p^T A p <= 0 on an indefinite matrix).
+#include "assembly/sparse_matrix.hpp"
+#include "solver/linear_solver.hpp"
+#include "solver/preconditioner.hpp"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace hofem {
+
+struct KrylovOptions {
+  double rtol = 1e-8;        ///< stop when ||r|| <= rtol ||b|| (true residual for CG/CR/GMRES; MINRES' estimate)
+  int max_iterations = 5000;
+  int restart = 50;          ///< GMRES(m)
+};
+
+struct KrylovResult {
+  bool converged = false;
+  int iterations = 0;
+  double relative_residual = 0.0;
+  std::vector<double> history;  ///< relative residual per iteration (index 0: initial)
+  std::string breakdown;        ///< non-empty if the method broke down (and why)
+};
+
+KrylovResult conjugate_gradient(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                const Preconditioner& M, const KrylovOptions& opt);
+KrylovResult conjugate_residual(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                const Preconditioner& M, const KrylovOptions& opt);
+KrylovResult minres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
+                    const KrylovOptions& opt);
+KrylovResult gmres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
+                   const KrylovOptions& opt);
+
+/// A LinearSolver running one Krylov method ("cg", "cr", "minres", "gmres") with
+/// one preconditioner; factorize() sets the preconditioner up, solve() iterates
+/// from zero and throws std::runtime_error if it does not converge.
+class KrylovSolver final : public LinearSolver {
+ public:
+  KrylovSolver(std::string method, std::string preconditioner, KrylovOptions options = {});
+  std::string_view name() const override { return name_; }
+  void analyze(const SparseMatrix& A) override;
+  bool factorize(const SparseMatrix& A) override;
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
+  const KrylovResult& last_result() const { return last_; }
+
+ private:
+  std::string method_, name_;
+  std::unique_ptr<Preconditioner> M_;
+  KrylovOptions options_;
+  const SparseMatrix* A_ = nullptr;
+  KrylovResult last_;
+};
+
+}  // namespace hofem

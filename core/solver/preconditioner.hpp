@@ -1,0 +1,36 @@
+#pragma once
+// Preconditioners for the Krylov solvers (thesis §3.1): z = M^-1 r with M ~ A.
+// Each is set up once per matrix (values) and applied every iteration; all are
+// symmetric positive definite when A is SPD, which CG, CR and MINRES need.
+#include "assembly/sparse_matrix.hpp"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hofem {
+
+class Preconditioner {
+ public:
+  virtual ~Preconditioner() = default;
+  virtual std::string_view name() const = 0;
+  /// Builds M from A (A symmetric, stored in full). Returns false if it cannot
+  /// (e.g. a non-positive diagonal for Jacobi), with the reason in last_error().
+  virtual bool setup(const SparseMatrix& A) = 0;
+  virtual void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const = 0;
+  const std::string& last_error() const { return error_; }
+
+ protected:
+  std::string error_;
+};
+
+/// "none", "jacobi", "block-jacobi" (3x3 nodal blocks), "ic0" (incomplete
+/// Cholesky, zero fill, natural ordering, diagonal shift retried on breakdown).
+/// Throws std::invalid_argument naming the valid choices.
+std::unique_ptr<Preconditioner> make_preconditioner(std::string_view name);
+std::vector<std::string> preconditioner_names();
+
+}  // namespace hofem
