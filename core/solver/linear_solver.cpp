@@ -2,6 +2,7 @@
 
 #include "solver/cholmod_solver.hpp"
 #include "solver/krylov.hpp"
+#include "solver/umfpack_solver.hpp"
 
 #include <Eigen/SparseCholesky>
 #include <fmt/format.h>
@@ -39,7 +40,7 @@ class EigenLdltSolver final : public LinearSolver {
 }  // namespace
 
 std::vector<std::string> linear_solver_names() {
-  std::vector<std::string> names{"cholmod", "eigen-ldlt"};
+  std::vector<std::string> names{"cholmod", "umfpack", "eigen-ldlt"};
   for (const char* method : {"cg", "cr", "minres", "gmres"})
     for (const std::string& pc : preconditioner_names()) names.push_back(std::string(method) + "+" + pc);
   return names;
@@ -48,6 +49,7 @@ std::vector<std::string> linear_solver_names() {
 std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name) {
   if (name == "cholmod") return std::make_unique<CholmodSolver>();
   if (name == "eigen-ldlt") return std::make_unique<EigenLdltSolver>();
+  if (name == "umfpack") return std::make_unique<UmfpackSolver>();
   // "<krylov method>+<preconditioner>", e.g. "cg+ic0".
   if (const size_t plus = name.find('+'); plus != std::string_view::npos) {
     const std::string method(name.substr(0, plus)), pc(name.substr(plus + 1));
@@ -55,7 +57,7 @@ std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name) {
       return std::make_unique<KrylovSolver>(method, pc);
   }
   throw std::invalid_argument(fmt::format(
-      "unknown linear solver '{}' (valid: cholmod, eigen-ldlt, or <cg|cr|minres|gmres>+<none|jacobi|block-jacobi|ic0>)", name));
+      "unknown linear solver '{}' (valid: cholmod, umfpack, eigen-ldlt, or <cg|cr|minres|gmres>+<none|jacobi|block-jacobi|ic0>)", name));
 }
 
 }  // namespace hofem

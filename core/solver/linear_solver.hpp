@@ -33,7 +33,8 @@ class LinearSolver {
   int factorizations_ = 0;
 };
 
-/// "cholmod" (supernodal Cholesky, SuiteSparse, 64-bit indices), "eigen-ldlt"
+/// "cholmod" (supernodal Cholesky, SuiteSparse, 64-bit indices), "umfpack"
+/// (sparse LU, for nonsingular indefinite matrices), "eigen-ldlt"
 /// (Eigen's SimplicialLDLT, for comparison and small problems), or a Krylov
 /// method with a preconditioner, "<cg|cr|minres|gmres>+<none|jacobi|block-jacobi|ic0>"
 /// (solver/krylov.hpp). Throws std::invalid_argument naming the valid choices.

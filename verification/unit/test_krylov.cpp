@@ -133,6 +133,36 @@ TEST(Preconditioners, AreSymmetricPositiveDefiniteOnSpdMatrices) {
   EXPECT_THROW(make_linear_solver("bicgstab+jacobi"), std::invalid_argument);
 }
 
+// The direct solvers agree with each other; UMFPACK also solves the indefinite
+// system Cholesky refuses.
+TEST(DirectSolvers, UmfpackAndEigenLdltAgreeWithCholmod) {
+  const SparseMatrix K = stiffness();
+  const Eigen::VectorXd b = rhs(K.rows());
+  Eigen::VectorXd x_ref, x;
+  auto chol = make_linear_solver("cholmod");
+  ASSERT_TRUE(chol->factorize(K));
+  chol->solve(b, x_ref);
+  for (const char* name : {"umfpack", "eigen-ldlt"}) {
+    auto s = make_linear_solver(name);
+    ASSERT_TRUE(s->factorize(K)) << name;
+    ASSERT_TRUE(s->factorize(K)) << name;  // refactorisation reuses the symbolic analysis
+    EXPECT_EQ(s->analyses(), 1) << name;
+    s->solve(b, x);
+    // Both backward stable: cond(K) ~1e4 times eps bounds the difference at ~1e-12.
+    EXPECT_LE((x - x_ref).norm() / x_ref.norm(), 1e-10) << name;
+  }
+  // K - sigma I with sigma between the 11th and 12th eigenvalue: indefinite, nonsingular.
+  const Eigen::MatrixXd D(K);
+  const Eigen::VectorXd eig = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(D, Eigen::EigenvaluesOnly).eigenvalues();
+  SparseMatrix A = K;
+  for (Eigen::Index i = 0; i < A.rows(); ++i) A.coeffRef(i, i) -= 0.5 * (eig[10] + eig[11]);
+  EXPECT_FALSE(chol->factorize(A));  // Cholesky refuses
+  auto lu = make_linear_solver("umfpack");
+  ASSERT_TRUE(lu->factorize(A));
+  lu->solve(b, x);
+  EXPECT_LE((b - A * x).norm() / b.norm(), 1e-10);  // backward stable LU
+}
+
 // Newton runs unchanged on an iterative solver.
 TEST(Krylov, DrivesTheStaticSolverThroughTheLinearSolverInterface) {
   auto s = make_linear_solver("minres+block-jacobi");

@@ -1,0 +1,56 @@
+#include "solver/umfpack_solver.hpp"
+
+#include <fmt/format.h>
+#include <umfpack.h>
+
+#include <stdexcept>
+
+namespace hofem {
+
+namespace {
+// Eigen's 64-bit indices are the SuiteSparse_long the dl interface expects.
+static_assert(sizeof(SuiteSparse_long) == sizeof(std::int64_t));
+const SuiteSparse_long* idx(const std::int64_t* p) { return reinterpret_cast<const SuiteSparse_long*>(p); }
+}  // namespace
+
+UmfpackSolver::~UmfpackSolver() {
+  free_numeric();
+  if (symbolic_) umfpack_dl_free_symbolic(&symbolic_);
+}
+
+void UmfpackSolver::free_numeric() {
+  if (numeric_) umfpack_dl_free_numeric(&numeric_);
+}
+
+void UmfpackSolver::analyze(const SparseMatrix& A) {
+  if (!A.isCompressed()) throw std::invalid_argument("UmfpackSolver: matrix must be compressed");
+  free_numeric();
+  if (symbolic_) umfpack_dl_free_symbolic(&symbolic_);
+  const int status = umfpack_dl_symbolic(A.rows(), A.cols(), idx(A.outerIndexPtr()), idx(A.innerIndexPtr()), A.valuePtr(),
+                                         &symbolic_, nullptr, nullptr);
+  if (status != UMFPACK_OK) throw std::runtime_error(fmt::format("UMFPACK symbolic analysis failed (status {})", status));
+  n_ = A.rows();
+  ++analyses_;
+}
+
+bool UmfpackSolver::factorize(const SparseMatrix& A) {
+  if (!symbolic_ || A.rows() != n_) analyze(A);
+  free_numeric();
+  const int status =
+      umfpack_dl_numeric(idx(A.outerIndexPtr()), idx(A.innerIndexPtr()), A.valuePtr(), symbolic_, &numeric_, nullptr, nullptr);
+  ++factorizations_;
+  A_ = &A;
+  if (status == UMFPACK_WARNING_singular_matrix) return false;
+  if (status != UMFPACK_OK) throw std::runtime_error(fmt::format("UMFPACK numeric factorisation failed (status {})", status));
+  return true;
+}
+
+void UmfpackSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (!numeric_ || !A_) throw std::logic_error("UmfpackSolver::solve before factorize");
+  x.resize(b.size());
+  const int status = umfpack_dl_solve(UMFPACK_A, idx(A_->outerIndexPtr()), idx(A_->innerIndexPtr()), A_->valuePtr(), x.data(),
+                                      b.data(), numeric_, nullptr, nullptr);
+  if (status != UMFPACK_OK) throw std::runtime_error(fmt::format("UMFPACK solve failed (status {})", status));
+}
+
+}  // namespace hofem

@@ -1,0 +1,31 @@
+#pragma once
+// Sparse LU through UMFPACK's long-integer interface (umfpack_dl_*): the
+// symbolic analysis (column ordering) is done once per pattern and reused by
+// every numeric factorisation. Works for any nonsingular matrix, SPD or not, so
+// it is the direct fallback for indefinite Hessians; for SPD ones CHOLMOD is faster.
+#include "solver/linear_solver.hpp"
+
+namespace hofem {
+
+class UmfpackSolver final : public LinearSolver {
+ public:
+  UmfpackSolver() = default;
+  ~UmfpackSolver() override;
+  UmfpackSolver(const UmfpackSolver&) = delete;
+  UmfpackSolver& operator=(const UmfpackSolver&) = delete;
+
+  std::string_view name() const override { return "umfpack"; }
+  void analyze(const SparseMatrix& A) override;
+  /// Returns false if A is singular (UMFPACK_WARNING_singular_matrix).
+  bool factorize(const SparseMatrix& A) override;
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
+
+ private:
+  void free_numeric();
+  void* symbolic_ = nullptr;
+  void* numeric_ = nullptr;
+  const SparseMatrix* A_ = nullptr;
+  std::int64_t n_ = -1;
+};
+
+}  // namespace hofem
