@@ -21,6 +21,11 @@ namespace hofem::cli {
 
 namespace {
 
+// Output paths may name a directory that does not exist yet (reports/, out/...).
+void ensure_parent_directory(const std::string& path) {
+  if (const std::filesystem::path p(path); p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+}
+
 CellType parse_cell_or_throw(const std::string& text) {
   const auto cell = parse_cell(text);
   if (!cell) throw UsageError(fmt::format("--cell: unknown cell '{}' (valid: {})", text, cell_choices()));
@@ -127,7 +132,7 @@ int run_mesh(const MeshOptions& o) {
   const MeshQuality q = measure_quality(m);
   const std::string element = lagrange_basis(m.cell, m.order).element_name();
   if (!o.vtu.empty()) {
-    if (const std::filesystem::path out(o.vtu); out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
+    ensure_parent_directory(o.vtu);
     Eigen::MatrixXd ids(1, m.num_elements());
     for (int e = 0; e < m.num_elements(); ++e) ids(0, e) = e;
     write_vtu(o.vtu, m, {}, {{"element_id", ids}});
@@ -162,8 +167,7 @@ int run_mms(const MmsOptions& o) {
   if (o.n < 1) throw UsageError(fmt::format("--n must be >= 1, got {}", o.n));
   if (o.order < 1 || (cell == CellType::Hexahedron && o.order > 2))
     throw UsageError(fmt::format("--order: tet needs >= 1, hex 1 or 2; got {}", o.order));
-  if (!o.vtu.empty())
-    if (const std::filesystem::path out(o.vtu); out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
+  if (!o.vtu.empty()) ensure_parent_directory(o.vtu);
   verification::MmsCase c{o.problem, cell, o.order, o.n, o.perturbed, o.solver, o.vtu};
   const verification::MmsResult r = verification::run_mms(c);
   if (o.json) {
@@ -197,9 +201,8 @@ int run_verify(const VerifyOptions& o) {
       if (r["group"].get<std::string>().starts_with(o.group)) rows.push_back(r);
     j["rows"] = rows;
   }
-  const std::filesystem::path out(o.out);
-  if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
-  std::ofstream f(out);
+  ensure_parent_directory(o.out);
+  std::ofstream f(o.out);
   if (!f) throw std::runtime_error(fmt::format("cannot write '{}'", o.out));
   f << j.dump(1) << '\n';
   if (!o.quiet) {

@@ -106,7 +106,6 @@ void check_size(const Eigen::VectorXd& x, const Mesh& mesh) {
 
 double Assembler::energy(const Material& mat, const Eigen::VectorXd& x) const {
   check_size(x, mesh_);
-  ++counters_.energy;
   std::vector<double> per_element(mesh_.num_elements());
   dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
     constexpr int N = decltype(n)::value;
@@ -122,7 +121,6 @@ double Assembler::energy(const Material& mat, const Eigen::VectorXd& x) const {
 
 double Assembler::gradient(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g) const {
   check_size(x, mesh_);
-  ++counters_.gradient;
   g.setZero(3 * mesh_.num_nodes());
   std::vector<double> per_element(mesh_.num_elements());
   dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
@@ -141,7 +139,6 @@ double Assembler::gradient(const Material& mat, const Eigen::VectorXd& x, Eigen:
 double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g, SparseMatrix& K,
                           bool project) const {
   check_size(x, mesh_);
-  ++counters_.hessian;
   if (K.nonZeros() != pattern_->nonzeros()) K = new_matrix();
   std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
   g.setZero(3 * mesh_.num_nodes());

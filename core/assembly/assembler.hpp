@@ -59,12 +59,6 @@ class Assembler {
   /// free DOFs, rule of degree >= 2p for any order.
   SparseMatrix mass_matrix(double density, int degree) const;
 
-  /// How often each kind of assembly ran (the run statistics quote these).
-  struct Counters {
-    long energy = 0, gradient = 0, hessian = 0;
-  };
-  const Counters& counters() const { return counters_; }
-
  private:
   const Mesh& mesh_;
   const DofMap& dofs_;
@@ -72,7 +66,6 @@ class Assembler {
   const QuadratureRule* rule_;
   const BasisTabulation* tab_;
   std::unique_ptr<SparsityPattern> pattern_;
-  mutable Counters counters_;
 };
 
 }  // namespace hofem

@@ -16,7 +16,7 @@
 namespace hofem {
 
 struct KrylovOptions {
-  double rtol = 1e-8;        ///< stop when ||r|| <= rtol ||b|| (true residual for CG/CR/GMRES; MINRES' estimate)
+  double rtol = 1e-8;        ///< converged when the true residual ||b - A x|| <= rtol ||b||
   int max_iterations = 5000;
   int restart = 50;          ///< GMRES(m)
 };
@@ -24,7 +24,7 @@ struct KrylovOptions {
 struct KrylovResult {
   bool converged = false;
   int iterations = 0;
-  double relative_residual = 0.0;
+  double relative_residual = 0.0;  ///< true residual ||b - A x|| / ||b|| at the end
   std::vector<double> history;  ///< relative residual per iteration (index 0: initial)
   std::string breakdown;        ///< non-empty if the method broke down (and why)
 };

@@ -80,7 +80,7 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
     // rounding is accepted if it reduces the gradient.
     double alpha = 1.0, E_new = E;
     Eigen::VectorXd g_new;
-    bool accepted = false;
+    bool accepted = false, have_g_new = false;
     for (int b = 0; b <= opt.max_backtracks; ++b, alpha *= 0.5) {
       u_trial = u + alpha * d;
       E_new = problem.energy(u_trial);
@@ -93,7 +93,7 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
       if (std::fabs(E_new - E) <= rounding) {
         problem.gradient(u_trial, g_new);
         if (g_new.norm() < rec.residual) {
-          accepted = true;
+          accepted = have_g_new = true;
           break;
         }
       }
@@ -107,7 +107,12 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
     rec.step = alpha;
     result.history.push_back(rec);
     u = u_trial;
-    E = problem.gradient(u, g);
+    if (have_g_new) {  // the line search already evaluated the gradient here
+      E = E_new;
+      g.swap(g_new);
+    } else {
+      E = problem.gradient(u, g);
+    }
   }
   result.iterations = opt.max_iterations;
   result.final_residual = g.norm();

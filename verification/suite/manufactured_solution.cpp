@@ -71,6 +71,15 @@ void ManufacturedDisplacement::hessians(const Eigen::Vector3d& X, Eigen::Matrix3
   for (int k = 0; k < 3; ++k) H[k] *= scale;
 }
 
+Eigen::Vector3d equilibrium_body_force(const Eigen::Matrix<double, 9, 9>& A, const Eigen::Matrix3d H[3]) {
+  Eigen::Vector3d f = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) f[i] -= A(i + 3 * j, k + 3 * l) * H[k](l, j);
+  return f;
+}
+
 namespace {
 
 // Moves every vertex not on the boundary by a uniform random offset of up to
@@ -105,15 +114,9 @@ MmsResult run_mms(const MmsCase& c) {
   const Material& mat = *material;
   VectorField body_force = [&](const Eigen::Vector3d& X) {
     const Mat3 F = Mat3::Identity() + ustar.gradient(X);
-    const Mat9 A = mat.stress_derivative(F);
     Eigen::Matrix3d H[3];
     ustar.hessians(X, H);
-    Eigen::Vector3d f = Eigen::Vector3d::Zero();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        for (int k = 0; k < 3; ++k)
-          for (int l = 0; l < 3; ++l) f[i] -= A(i + 3 * j, k + 3 * l) * H[k](l, j);
-    return f;
+    return equilibrium_body_force(mat.stress_derivative(F), H);
   };
   StaticOptions opt;
   opt.quadrature_degree = default_quadrature_degree(mesh.cell, mesh.order, linear);

@@ -28,6 +28,11 @@ struct ManufacturedDisplacement {
   void hessians(const Eigen::Vector3d& X, Eigen::Matrix3d H[3]) const;
 };
 
+/// Body force that puts a displacement field in equilibrium, from the material
+/// tangent A = dP/dF at the point and the field's second derivatives H[k](l, j) =
+/// d^2 u_k / dX_l dX_j:  f_i = -Div P = -sum_{j,k,l} A(i + 3j, k + 3l) H[k](l, j).
+Eigen::Vector3d equilibrium_body_force(const Eigen::Matrix<double, 9, 9>& A, const Eigen::Matrix3d H[3]);
+
 struct MmsCase {
   std::string problem = "linear";  ///< "linear" or "neohookean"
   CellType cell = CellType::Tetrahedron;

@@ -1,4 +1,5 @@
 #include "element_checks.hpp"
+#include "manufactured_solution.hpp"
 
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
@@ -97,12 +98,11 @@ void add_patch_checks(Report& report) {
     if (pc.order > 1) mesh = upgrade_order(mesh, pc.order);
     const PolynomialField field(pc.degree, rng);
     VectorField body_force = [&](const Eigen::Vector3d& X) {
-      Eigen::Vector3d f = Eigen::Vector3d::Zero();
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-          for (int k = 0; k < 3; ++k)
-            for (int l = 0; l < 3; ++l) f[i] -= A(i + 3 * j, k + 3 * l) * field.second(X, k, l, j);
-      return f;
+      Eigen::Matrix3d H[3];
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l)
+          for (int j = 0; j < 3; ++j) H[k](l, j) = field.second(X, k, l, j);
+      return equilibrium_body_force(A, H);
     };
     StaticOptions opt;
     // Exact integration on affine elements: stiffness 2(p-1), load (p-2) + p.
