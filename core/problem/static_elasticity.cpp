@@ -34,6 +34,7 @@ StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, s
   validate_mesh(mesh);  // inverted / degenerate elements are rejected with their index
   assembler_ = std::make_unique<Assembler>(mesh, dofs_, options_.quadrature_degree);
   solver_ = make_linear_solver(options_.linear_solver);
+  solver_->set_discretization({&mesh_, &dofs_});
   const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * mesh.order + 2;
   f_ext_ = body_force ? assembler_->body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * mesh.num_nodes());
   u_dirichlet_ = Eigen::VectorXd::Zero(3 * mesh.num_nodes());

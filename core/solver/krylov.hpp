@@ -48,7 +48,12 @@ class KrylovSolver final : public LinearSolver {
   void analyze(const SparseMatrix& A) override;
   bool factorize(const SparseMatrix& A) override;
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
+  void set_discretization(const Discretization& d) override { M_->set_discretization(d); }
+  void set_relative_tolerance(double rtol) override { options_.rtol = rtol; }
+  bool is_iterative() const override { return true; }
+  int last_iterations() const override { return last_.iterations; }
   const KrylovResult& last_result() const { return last_; }
+  const Preconditioner& preconditioner() const { return *M_; }
 
  private:
   std::string method_, name_;

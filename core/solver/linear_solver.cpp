@@ -1,11 +1,13 @@
 #include "solver/linear_solver.hpp"
 
 #include "solver/cholmod_solver.hpp"
+#include "solver/hypre_pcg.hpp"
 #include "solver/krylov.hpp"
 #include "solver/umfpack_solver.hpp"
 
 #include <Eigen/SparseCholesky>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <stdexcept>
 
@@ -40,7 +42,7 @@ class EigenLdltSolver final : public LinearSolver {
 }  // namespace
 
 std::vector<std::string> linear_solver_names() {
-  std::vector<std::string> names{"cholmod", "umfpack", "eigen-ldlt"};
+  std::vector<std::string> names{"cholmod", "umfpack", "eigen-ldlt", "hypre-pcg+amg"};
   for (const char* method : {"cg", "cr", "minres", "gmres"})
     for (const std::string& pc : preconditioner_names()) names.push_back(std::string(method) + "+" + pc);
   return names;
@@ -50,6 +52,7 @@ std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name) {
   if (name == "cholmod") return std::make_unique<CholmodSolver>();
   if (name == "eigen-ldlt") return std::make_unique<EigenLdltSolver>();
   if (name == "umfpack") return std::make_unique<UmfpackSolver>();
+  if (name == "hypre-pcg+amg") return make_hypre_pcg_solver();
   // "<krylov method>+<preconditioner>", e.g. "cg+ic0".
   if (const size_t plus = name.find('+'); plus != std::string_view::npos) {
     const std::string method(name.substr(0, plus)), pc(name.substr(plus + 1));
@@ -57,7 +60,8 @@ std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name) {
       return std::make_unique<KrylovSolver>(method, pc);
   }
   throw std::invalid_argument(fmt::format(
-      "unknown linear solver '{}' (valid: cholmod, umfpack, eigen-ldlt, or <cg|cr|minres|gmres>+<none|jacobi|block-jacobi|ic0>)", name));
+      "unknown linear solver '{}' (valid: cholmod, umfpack, eigen-ldlt, hypre-pcg+amg, or <cg|cr|minres|gmres>+<{}>)", name,
+      fmt::join(preconditioner_names(), "|")));
 }
 
 }  // namespace hofem

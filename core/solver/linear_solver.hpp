@@ -3,6 +3,7 @@
 // A solver analyses a sparsity pattern once (symbolic factorisation, orderings),
 // then factorises and solves many matrices with that pattern.
 #include "assembly/sparse_matrix.hpp"
+#include "solver/discretization.hpp"
 
 #include <Eigen/Core>
 
@@ -24,6 +25,14 @@ class LinearSolver {
   virtual bool factorize(const SparseMatrix& A) = 0;
   /// x = A^-1 b with the last factorised A.
   virtual void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
+  /// Mesh and DOF map of the systems to come, for mesh-aware preconditioners.
+  virtual void set_discretization(const Discretization&) {}
+  /// Relative residual target of an iterative solver (Newton's inexact,
+  /// Eisenstat-Walker tolerances); direct solvers ignore it.
+  virtual void set_relative_tolerance(double) {}
+  virtual bool is_iterative() const { return false; }
+  /// Iterations of the last solve (0 for direct solvers).
+  virtual int last_iterations() const { return 0; }
   /// Number of symbolic analyses / numeric factorisations done (run statistics).
   int analyses() const { return analyses_; }
   int factorizations() const { return factorizations_; }
@@ -36,8 +45,10 @@ class LinearSolver {
 /// "cholmod" (supernodal Cholesky, SuiteSparse, 64-bit indices), "umfpack"
 /// (sparse LU, for nonsingular indefinite matrices), "eigen-ldlt"
 /// (Eigen's SimplicialLDLT, for comparison and small problems), or a Krylov
-/// method with a preconditioner, "<cg|cr|minres|gmres>+<none|jacobi|block-jacobi|ic0>"
-/// (solver/krylov.hpp). Throws std::invalid_argument naming the valid choices.
+/// method with a preconditioner, "<cg|cr|minres|gmres>+<preconditioner>"
+/// (solver/krylov.hpp, solver/preconditioner.hpp), or hypre's own PCG with
+/// BoomerAMG, "hypre-pcg+amg" (solver/hypre_pcg.hpp). Throws
+/// std::invalid_argument naming the valid choices.
 std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name);
 std::vector<std::string> linear_solver_names();
 

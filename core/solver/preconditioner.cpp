@@ -1,5 +1,9 @@
 #include "solver/preconditioner.hpp"
 
+#include "solver/additive_schwarz.hpp"
+#include "solver/boomeramg.hpp"
+#include "solver/p_multigrid.hpp"
+
 #include <Eigen/Dense>
 #include <Eigen/IterativeLinearSolvers>
 #include <fmt/format.h>
@@ -100,14 +104,28 @@ class IncompleteCholeskyPreconditioner final : public Preconditioner {
 
 }  // namespace
 
-std::vector<std::string> preconditioner_names() { return {"none", "jacobi", "block-jacobi", "ic0"}; }
+std::vector<std::string> preconditioner_names() {
+  std::vector<std::string> names{"none", "jacobi", "block-jacobi", "ic0"};
+  for (const std::string& v : boomeramg_variant_names()) names.push_back(v);
+  names.push_back("pmg");
+  names.push_back("schwarz");
+  return names;
+}
+
+bool preconditioner_needs_discretization(std::string_view name) { return name == "pmg" || name == "schwarz"; }
 
 std::unique_ptr<Preconditioner> make_preconditioner(std::string_view name) {
   if (name == "none") return std::make_unique<IdentityPreconditioner>();
   if (name == "jacobi") return std::make_unique<JacobiPreconditioner>();
   if (name == "block-jacobi") return std::make_unique<BlockJacobiPreconditioner>();
   if (name == "ic0") return std::make_unique<IncompleteCholeskyPreconditioner>();
-  throw std::invalid_argument(fmt::format("unknown preconditioner '{}' (valid: none, jacobi, block-jacobi, ic0)", name));
+  if (name == "pmg") return make_p_multigrid_preconditioner();
+  if (name == "schwarz") return make_additive_schwarz_preconditioner();
+  for (const std::string& v : boomeramg_variant_names())
+    if (name == v) return make_boomeramg_preconditioner(name);
+  std::string valid;
+  for (const std::string& n : preconditioner_names()) valid += (valid.empty() ? "" : ", ") + n;
+  throw std::invalid_argument(fmt::format("unknown preconditioner '{}' (valid: {})", name, valid));
 }
 
 }  // namespace hofem

@@ -3,6 +3,7 @@
 // Each is set up once per matrix (values) and applied every iteration; all are
 // symmetric positive definite when A is SPD, which CG, CR and MINRES need.
 #include "assembly/sparse_matrix.hpp"
+#include "solver/discretization.hpp"
 
 #include <Eigen/Core>
 
@@ -21,16 +22,24 @@ class Preconditioner {
   /// (e.g. a non-positive diagonal for Jacobi), with the reason in last_error().
   virtual bool setup(const SparseMatrix& A) = 0;
   virtual void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const = 0;
+  /// Mesh and DOF map of the systems to come (before setup). Mesh-aware
+  /// preconditioners need it and fail setup() without it; others ignore it.
+  virtual void set_discretization(const Discretization& d) { discretization_ = d; }
   const std::string& last_error() const { return error_; }
 
  protected:
   std::string error_;
+  Discretization discretization_;
 };
 
 /// "none", "jacobi", "block-jacobi" (3x3 nodal blocks), "ic0" (incomplete
-/// Cholesky, zero fill, natural ordering, diagonal shift retried on breakdown).
-/// Throws std::invalid_argument naming the valid choices.
+/// Cholesky, zero fill, natural ordering, diagonal shift retried on breakdown),
+/// BoomerAMG variants "amg..." (solver/boomeramg.hpp), "pmg" (p-multigrid,
+/// solver/p_multigrid.hpp), "schwarz" (element-block Additive Schwarz,
+/// solver/additive_schwarz.hpp). Throws std::invalid_argument naming the valid choices.
 std::unique_ptr<Preconditioner> make_preconditioner(std::string_view name);
 std::vector<std::string> preconditioner_names();
+/// True for preconditioners that need set_discretization() before setup().
+bool preconditioner_needs_discretization(std::string_view name);
 
 }  // namespace hofem

@@ -1,6 +1,8 @@
 // The library stack hofem builds on, linked and exercised: CHOLMOD and UMFPACK
 // (SuiteSparse) solve a small SPD system, and hypre starts under MPI. Catches a
 // broken install (missing OpenBLAS, MPI/hypre mismatch) before later layers do.
+#include "parallel/mpi_runtime.hpp"
+
 #include <HYPRE.h>
 #include <HYPRE_utilities.h>
 #include <cholmod.h>
@@ -93,16 +95,16 @@ TEST(Dependencies, UmfpackSolvesSystem) {
 }
 
 // Debian's hypre is an MPI build: MPI_Init must precede HYPRE_Init.
+// hofem::ensure_hypre() does both once per process (MPI_Finalize at exit), so
+// the hypre tests of this binary can follow.
 TEST(Dependencies, HypreInitialisesUnderMpi) {
-  int flag = 0;
+  hofem::ensure_hypre();
+  int flag = 0, size = 0;
   MPI_Initialized(&flag);
-  if (!flag) MPI_Init(nullptr, nullptr);
-  int size = 0;
+  EXPECT_TRUE(flag);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   EXPECT_GE(size, 1);
-  EXPECT_EQ(HYPRE_Init(), 0);
-  EXPECT_EQ(HYPRE_Finalize(), 0);
-  MPI_Finalize();
+  hofem::ensure_hypre();  // idempotent
 }
 
 }  // namespace
