@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace hofem {
 
@@ -102,6 +103,7 @@ Eigen::VectorXd StaticElasticity::predict(const Eigen::VectorXd& u, double from,
   load_ = from;
   hessian(u, g0, K, true);  // PSD-projected: a predictor must be a descent-like step
   if (!solver_->factorize(K)) return u;
+  solver_->set_relative_tolerance(options_.newton.linear_rtol);
   // d g / d load by a forward difference: the body-force part is linear in the
   // load, and the Dirichlet part is evaluated on a tiny boundary move (1e-6 of
   // the step) that cannot fold an element.
@@ -110,7 +112,12 @@ Eigen::VectorXd StaticElasticity::predict(const Eigen::VectorXd& u, double from,
   if (!std::isfinite(gradient(u, g1))) return u;
   const Eigen::VectorXd dg = (g1 - g0) / eps * (to - from);
   step_force_ = dg.norm();
-  solver_->solve(-dg, du);
+  try {
+    solver_->solve(-dg, du);
+  } catch (const std::runtime_error&) {  // an iterative solver that did not converge: no prediction
+    return u;
+  }
+  predictor_iterations_ += solver_->last_iterations();
   const Eigen::VectorXd trial = u + du;
   load_ = to;
   return std::isfinite(energy(trial)) ? trial : u;
@@ -133,6 +140,8 @@ StaticReport StaticElasticity::solve() {
     load_ = target;
     NewtonResult r = newton_minimize(*this, trial, *solver_, options_.newton);
     report.newton_iterations += r.iterations;
+    report.linear_iterations += r.linear_iterations + predictor_iterations_;
+    predictor_iterations_ = 0;
     report.steps.push_back(r);
     if (r.converged) {
       u = trial;

@@ -44,6 +44,7 @@ struct StaticOptions {
 struct StaticReport {
   bool converged = false;
   int newton_iterations = 0;  ///< summed over load steps
+  int linear_iterations = 0;  ///< iterative solvers: summed over Newton iterations, load steps and predictors
   int load_steps = 0;
   std::vector<NewtonResult> steps;
   double assembly_seconds = 0.0;  ///< energy / gradient / Hessian assembly
@@ -91,6 +92,7 @@ class StaticElasticity final : public NonlinearProblem {
   double step_force_ = 0.0;  ///< |dg/dload| * dload of the current load step (force scale)
   double assembly_seconds_ = 0.0;
   double setup_seconds_hint_ = 0.0;
+  int predictor_iterations_ = 0;
 };
 
 }  // namespace hofem

@@ -2,8 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace hofem {
 
@@ -24,6 +26,22 @@ double mean_abs_diagonal(const SparseMatrix& K) {
   return K.rows() > 0 ? sum / static_cast<double>(K.rows()) : 1.0;
 }
 
+// Forcing term of Eisenstat & Walker (1996), choice 2, with their safeguard
+// (do not drop faster than gamma eta_prev^alpha while that is above 0.1) and
+// Kelley's (1995) floor: no point solving much below what the Newton stopping
+// rule needs, 0.5 tol / |g|.
+double forcing_term(const NewtonOptions& opt, int it, double g_norm, double g_prev, double eta_prev, double tol) {
+  if (!opt.eisenstat_walker) return opt.linear_rtol;
+  double eta = opt.ew_eta_max;
+  if (it > 0) {
+    eta = opt.ew_gamma * std::pow(g_norm / g_prev, opt.ew_alpha);
+    const double safeguard = opt.ew_gamma * std::pow(eta_prev, opt.ew_alpha);
+    if (safeguard > 0.1) eta = std::max(eta, safeguard);
+  }
+  eta = std::max(eta, 0.5 * tol / g_norm);
+  return std::clamp(eta, opt.linear_rtol, opt.ew_eta_max);
+}
+
 }  // namespace
 
 NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, LinearSolver& solver,
@@ -38,6 +56,7 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
   }
   result.force_scale = problem.force_scale(g);
   const double tol = opt.rtol * result.force_scale;
+  double g_prev = 0.0, eta = 0.0;
   for (int it = 0; it < opt.max_iterations; ++it) {
     NewtonIteration rec;
     rec.residual = g.norm();
@@ -71,9 +90,42 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
       result.history.push_back(rec);
       return result;
     }
-    rec.projected = project;
     rec.shift = shift;
-    solver.solve(-g, d);
+    if (solver.is_iterative()) {
+      eta = forcing_term(opt, it, rec.residual, g_prev, eta, tol);
+      solver.set_relative_tolerance(eta);
+      rec.linear_rtol = eta;
+    }
+    // An iterative solver can fail where a factorisation would not (CG meeting
+    // negative curvature on an indefinite Hessian): retry once on the projected
+    // Hessian, which is positive semi-definite by construction.
+    std::string solve_error;
+    try {
+      solver.solve(-g, d);
+    } catch (const std::runtime_error& e) {
+      solve_error = e.what();
+    }
+    if (!solve_error.empty() && !project) {
+      project = true;
+      problem.hessian(u, g, K, true);
+      solve_error.clear();
+      try {
+        if (!solver.factorize(K)) throw std::runtime_error("projected Hessian rejected by the solver");
+        solver.solve(-g, d);
+      } catch (const std::runtime_error& e) {
+        solve_error = e.what();
+      }
+    }
+    rec.projected = project;
+    rec.linear_iterations = solver.last_iterations();
+    result.linear_iterations += rec.linear_iterations;
+    if (!solve_error.empty()) {
+      result.message = fmt::format("linear solve failed at iteration {}: {}", it, solve_error);
+      result.iterations = it;
+      result.history.push_back(rec);
+      return result;
+    }
+    g_prev = rec.residual;
     const double slope = g.dot(d);
     // Backtracking Armijo line search. Near convergence the energy decrease drops
     // below the rounding of E itself; a step that changes E by no more than that

@@ -40,6 +40,14 @@ struct NewtonOptions {
   bool project_psd = false;     ///< always project dP/dF (otherwise only after a failed factorisation)
   double armijo = 1e-4;         ///< sufficient decrease constant c in E(u + a d) <= E(u) + c a g.d
   int max_backtracks = 30;
+  /// Inexact Newton (Eisenstat & Walker 1996, choice 2): an iterative linear
+  /// solver is only asked for eta_k = gamma (|g_k| / |g_k-1|)^alpha relative
+  /// residual, safeguarded, instead of a fixed tight tolerance. Direct solvers
+  /// are unaffected.
+  bool eisenstat_walker = false;
+  double ew_gamma = 0.9, ew_alpha = 2.0;
+  double ew_eta_max = 0.5;   ///< first and loosest forcing term
+  double linear_rtol = 1e-8; ///< iterative solvers' tolerance without Eisenstat-Walker (and its floor)
 };
 
 struct NewtonIteration {
@@ -48,6 +56,8 @@ struct NewtonIteration {
   double step = 0.0;      ///< accepted line-search step length
   bool projected = false;
   double shift = 0.0;     ///< diagonal shift used (0 if none)
+  double linear_rtol = 0.0;   ///< forcing term asked of an iterative solver (0: direct)
+  int linear_iterations = 0;  ///< iterations of an iterative solver (0: direct)
 };
 
 struct NewtonResult {
@@ -55,6 +65,7 @@ struct NewtonResult {
   int iterations = 0;
   double final_residual = 0.0;
   double force_scale = 0.0;
+  int linear_iterations = 0;  ///< summed over the iterations
   std::vector<NewtonIteration> history;
   std::string message;  ///< why it stopped
 };

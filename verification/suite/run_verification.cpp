@@ -5,6 +5,7 @@
 #include "element_checks.hpp"
 #include "material_checks.hpp"
 #include "quadrature_checks.hpp"
+#include "solver_checks.hpp"
 
 namespace hofem::verification {
 
@@ -20,6 +21,7 @@ Report run_fast_checks() {
 
 Report run_all_checks(const SuiteOptions& options) {
   Report report = run_fast_checks();
+  if (options.solvers) add_solver_checks(report);
   if (options.convergence != "none") add_convergence_checks(report, options.convergence);
   return report;
 }

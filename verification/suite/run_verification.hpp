@@ -8,12 +8,14 @@ namespace hofem::verification {
 struct SuiteOptions {
   /// Manufactured-solution convergence study: "none", "ci" or "full".
   std::string convergence = "ci";
+  /// Linear solvers and preconditioners (solver_checks.hpp; starts MPI for BoomerAMG).
+  bool solvers = true;
 };
 
 /// Fast checks: quadrature, bases, materials, elements, patch tests (seconds).
 Report run_fast_checks();
 
-/// Every check of the suite: the fast ones plus the convergence study.
+/// Every check of the suite: the fast ones, the solver checks and the convergence study.
 Report run_all_checks(const SuiteOptions& options = {});
 
 }  // namespace hofem::verification

@@ -1,0 +1,278 @@
+#include "solver_checks.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "assembly/assembler.hpp"
+#include "material/material.hpp"
+#include "mesh/box_mesh.hpp"
+#include "solver/krylov.hpp"
+#include "solver/linear_solver.hpp"
+
+namespace hofem::verification {
+
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// A clamped elastic body (xmin face fixed) and a matrix assembled on it.
+struct ElasticSystem {
+  std::string label;
+  Mesh mesh;
+  DofMap dofs;
+  SparseMatrix K;
+  Eigen::VectorXd b;
+  ElasticSystem(std::string l, Mesh m)
+      : label(std::move(l)), mesh(std::move(m)), dofs(mesh.num_nodes(), mesh.node_set("xmin")) {}
+  Discretization discretization() const { return {&mesh, &dofs}; }
+};
+
+Eigen::VectorXd smooth_rhs(Eigen::Index n) {
+  Eigen::VectorXd b(n);
+  for (Eigen::Index i = 0; i < n; ++i) b[i] = std::sin(0.37 * static_cast<double>(i)) + 0.1;
+  return b;
+}
+
+// Linear elasticity (E = 1, nu = 0.3) stiffness: SPD with the clamped face.
+ElasticSystem linear_system(std::string label, CellType cell, int order, int n) {
+  ElasticSystem s(std::move(label), box_mesh(unit_cube(n), cell, order));
+  const Assembler a(s.mesh, s.dofs);
+  const auto mat = make_material("linear", LameParameters::from_young_poisson(1.0, 0.3));
+  Eigen::VectorXd g;
+  s.K = a.new_matrix();
+  a.hessian(*mat, Eigen::Map<const Eigen::VectorXd>(s.mesh.nodes.data(), 3 * s.mesh.num_nodes()), g, s.K, false);
+  s.b = smooth_rhs(s.K.rows());
+  return s;
+}
+
+// Smallest eigenvalue of an SPD matrix by inverse iteration with CHOLMOD. The
+// Rayleigh quotient approaches lambda_min from above, so 1/lambda bounds
+// ||A^-1|| from below and the error bound built from it can only be stricter.
+double smallest_eigenvalue(const SparseMatrix& A, LinearSolver& chol) {
+  Eigen::VectorXd v = smooth_rhs(A.rows()).normalized(), w;
+  double lambda = 0.0;
+  for (int k = 0; k < 60; ++k) {
+    chol.solve(v, w);
+    lambda = 1.0 / v.dot(w);
+    v = w.normalized();
+  }
+  return lambda;
+}
+
+// Every solver reaches rtol and agrees with CHOLMOD within the forward-error
+// bound that rtol implies: ||x - x*|| <= ||A^-1|| ||r|| <= rtol ||b|| /
+// lambda_min.
+void add_spd_rows(Report& report) {
+  const double rtol = 1e-10;
+  const ElasticSystem systems[] = {
+      linear_system("Tet4 n=6", CellType::Tetrahedron, 1, 6), linear_system("Tet10 n=3", CellType::Tetrahedron, 2, 3),
+      linear_system("Tet20 n=2", CellType::Tetrahedron, 3, 2), linear_system("Hex8 n=6", CellType::Hexahedron, 1, 6),
+      linear_system("Hex20 n=3", CellType::Hexahedron, 2, 3)};
+  for (const ElasticSystem& s : systems) {
+    auto chol = make_linear_solver("cholmod");
+    chol->analyze(s.K);
+    if (!chol->factorize(s.K)) throw std::runtime_error("solver checks: stiffness not SPD for " + s.label);
+    Eigen::VectorXd x_ref, x;
+    chol->solve(s.b, x_ref);
+    const double lambda_min = smallest_eigenvalue(s.K, *chol);
+    // CHOLMOD's own error (backward stable: ~cond * eps) is far below this
+    // bound.
+    const double bound = rtol * s.b.norm() / (lambda_min * x_ref.norm());
+    report.measure("solvers.spd", s.label + " unknowns", static_cast<double>(s.K.rows()));
+    for (const std::string& name : linear_solver_names()) {
+      if (name == "cholmod") continue;
+      if (name.ends_with("+pmg") && s.mesh.order < 2) continue;  // no coarser p level
+      std::unique_ptr<LinearSolver> solver;
+      std::string error;
+      double residual = std::numeric_limits<double>::quiet_NaN(), diff = residual;
+      bool iterative = true;
+
+      try {
+        solver = make_linear_solver(name);
+        solver->set_discretization(s.discretization());
+        solver->set_relative_tolerance(rtol);
+        iterative = solver->is_iterative();
+        solver->analyze(s.K);
+        if (!solver->factorize(s.K)) throw std::runtime_error("set-up refused the SPD matrix");
+        solver->solve(s.b, x);
+        residual = (s.b - s.K * x).norm() / s.b.norm();
+        diff = (x - x_ref).norm() / x_ref.norm();
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+      const std::string why =
+          error.empty() ? fmt::format("{} iterations", solver ? solver->last_iterations() : 0) : "failed: " + error;
+      if (iterative)
+        report.check("solvers.spd", fmt::format("{} {} relative residual", s.label, name), residual, rtol,
+                     Compare::AtMost, "requested tolerance (true residual ||b - Ax|| / ||b||); " + why);
+      // Direct solvers: backward stable, forward error ~ cond(A) eps << the
+      // bound.
+      report.check("solvers.spd", fmt::format("{} {} vs cholmod", s.label, name), diff, iterative ? bound : 1e-8,
+                   Compare::AtMost,
+                   iterative ? fmt::format("rtol ||b|| / (lambda_min ||x||), lambda_min = {:.3e}; {}", lambda_min, why)
+                             : "direct vs direct: both backward stable, cond(K) < 1e6 here, "
+                               "so 1e-8 is 100x slack; " +
+                                   why);
+    }
+  }
+}
+
+// Dense M^-1 from unit vectors: symmetric to rounding and positive definite
+// (what CG, CR and MINRES require of a preconditioner).
+void add_preconditioner_rows(Report& report) {
+  const ElasticSystem systems[] = {linear_system("Tet10 n=2", CellType::Tetrahedron, 2, 2),
+                                   linear_system("Hex8 n=4", CellType::Hexahedron, 1, 4)};
+  for (const ElasticSystem& s : systems)
+    for (const std::string& name : preconditioner_names()) {
+      if (name == "pmg" && s.mesh.order < 2) continue;
+      std::unique_ptr<Preconditioner> M;
+      std::string error;
+      try {
+        M = make_preconditioner(name);
+        M->set_discretization(s.discretization());
+        if (!M->setup(s.K)) error = M->last_error();
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+      if (!error.empty()) {
+        report.check("solvers.preconditioner_spd", fmt::format("{} {} set-up", s.label, name), 0.0, 1.0,
+                     Compare::AtLeast, "set-up failed: " + error);
+        continue;
+      }
+      const Eigen::Index n = s.K.rows();
+      Eigen::MatrixXd Minv(n, n);
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(n), z;
+      for (Eigen::Index i = 0; i < n; ++i) {
+        e[i] = 1.0;
+        M->apply(e, z);
+        Minv.col(i) = z;
+        e[i] = 0.0;
+      }
+      const double scale = Minv.cwiseAbs().maxCoeff();
+      report.check("solvers.preconditioner_spd", fmt::format("{} {} asymmetry", s.label, name),
+                   (Minv - Minv.transpose()).cwiseAbs().maxCoeff() / scale, 1e-12, Compare::AtMost,
+                   "max |M^-1 - M^-T| / max |M^-1|: symmetric up to rounding "
+                   "of its sweeps (~n eps)");
+      const Eigen::VectorXd ev =
+          Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (Minv + Minv.transpose()), Eigen::EigenvaluesOnly)
+              .eigenvalues();
+      report.check("solvers.preconditioner_spd", fmt::format("{} {} lambda_min / lambda_max", s.label, name),
+                   ev.minCoeff() / ev.maxCoeff(), 1e3 * kEps, Compare::AtLeast,
+                   "positive definite: above the dense eigensolver's "
+                   "resolution (~n eps lambda_max)");
+    }
+}
+
+// Neo-Hookean cube pressed to 35 % of its height with a lateral shear wave,
+// Hessian without PSD projection: indefinite (thesis §5.3.2's setting).
+void add_indefinite_rows(Report& report) {
+  Mesh mesh = box_mesh(unit_cube(3), CellType::Tetrahedron, 2);
+  const DofMap dofs(mesh.num_nodes(), mesh.node_set("zmin"));
+  const Assembler a(mesh, dofs);
+  const auto mat = make_material("neohookean", LameParameters::from_young_poisson(1.0, 0.3));
+  Eigen::VectorXd x(3 * mesh.num_nodes()), g;
+  for (int i = 0; i < mesh.num_nodes(); ++i) {
+    const Eigen::Vector3d X = mesh.nodes.col(i);
+    x.segment<3>(3 * i) = Eigen::Vector3d(X.x() + 0.1 * X.z() * std::sin(3.0 * X.y()), X.y(), 0.35 * X.z());
+  }
+  SparseMatrix K = a.new_matrix();
+  a.hessian(*mat, x, g, K, false);
+  const Eigen::VectorXd ev =
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(K), Eigen::EigenvaluesOnly).eigenvalues();
+  int negative = 0;
+  for (Eigen::Index i = 0; i < ev.size(); ++i) negative += ev[i] < 0.0;
+  report.check("solvers.indefinite", "NH compressed cube Hessian negative eigenvalues", negative, 1, Compare::AtLeast,
+               fmt::format("the test matrix must be indefinite: lambda_min = "
+                           "{:.3e}, lambda_max = {:.3e}, {} unknowns",
+                           ev.minCoeff(), ev.maxCoeff(), K.rows()));
+  const Eigen::VectorXd b = smooth_rhs(K.rows());
+  KrylovOptions opt;
+  opt.rtol = 1e-8;
+  opt.max_iterations = 20000;
+  opt.restart = static_cast<int>(K.rows());  // full GMRES: restarted GMRES can
+                                             // stagnate on indefinite systems
+  for (const char* pc : {"none", "jacobi", "schwarz"}) {
+    // Jacobi needs a positive diagonal and may refuse; the Schwarz blocks are
+    // reflected (eq. 14) and stay SPD by design.
+    std::unique_ptr<Preconditioner> M;
+    std::string error;
+    try {
+      M = make_preconditioner(pc);
+      M->set_discretization({&mesh, &dofs});
+      if (!M->setup(K)) error = M->last_error();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    if (!error.empty()) {
+      report.measure("solvers.indefinite", fmt::format("{} set-up refused", pc), 1.0, error);
+      continue;
+    }
+    Eigen::VectorXd xs = Eigen::VectorXd::Zero(b.size());
+    const KrylovResult cg = conjugate_gradient(K, b, xs, *M, opt);
+    report.check("solvers.indefinite", fmt::format("cg+{} reports breakdown", pc), cg.breakdown.empty() ? 0.0 : 1.0,
+                 1.0, Compare::AtLeast, "CG needs p^T A p > 0; it must say so, not return garbage: " + cg.breakdown);
+    struct Method {
+      const char* name;
+      KrylovResult (*run)(const SparseMatrix&, const Eigen::VectorXd&, Eigen::VectorXd&, const Preconditioner&,
+                          const KrylovOptions&);
+    };
+    for (const Method m : {Method{"cr", &conjugate_residual}, Method{"minres", &minres}, Method{"gmres", &gmres}}) {
+      xs.setZero(b.size());
+      const KrylovResult r = (*m.run)(K, b, xs, *M, opt);
+      report.check("solvers.indefinite", fmt::format("{}+{} relative residual", m.name, pc),
+                   (b - K * xs).norm() / b.norm(), opt.rtol, Compare::AtMost,
+                   fmt::format("requested tolerance; {} iterations{}", r.iterations,
+                               r.breakdown.empty() ? "" : ", " + r.breakdown));
+    }
+  }
+}
+
+// Iterations of CG + BoomerAMG over three uniform refinements.
+void add_amg_scaling_rows(Report& report) {
+  struct Series {
+    int order;
+    int n0;
+  };
+  for (const Series s : {Series{1, 3}, Series{2, 2}}) {
+    std::vector<int> its;
+    std::string sizes;
+    try {
+      for (int k = 0; k < 4; ++k) {
+        const int n = s.n0 << k;
+        const ElasticSystem sys = linear_system("", CellType::Tetrahedron, s.order, n);
+        auto solver = make_linear_solver("cg+amg");
+        solver->set_relative_tolerance(1e-8);
+        solver->analyze(sys.K);
+        solver->factorize(sys.K);
+        Eigen::VectorXd x;
+        solver->solve(sys.b, x);
+        its.push_back(solver->last_iterations());
+        sizes += fmt::format("{}n={}: {} unknowns {} its", sizes.empty() ? "" : "; ", n, sys.K.rows(), its.back());
+      }
+    } catch (const std::exception& e) {
+      report.check("solvers.amg_scaling", fmt::format("Tet order {} cg+amg", s.order), 0.0, 1.0, Compare::AtLeast,
+                   std::string("failed: ") + e.what());
+      continue;
+    }
+    report.check("solvers.amg_scaling", fmt::format("Tet order {} cg+amg iterations, finest / coarsest", s.order),
+                 static_cast<double>(its.back()) / its.front(), 1.5, Compare::AtMost,
+                 "issue 4: near mesh-independent AMG convergence, at most 1.5x over "
+                 "three refinements; " +
+                     sizes);
+  }
+}
+
+}  // namespace
+
+void add_solver_checks(Report& report) {
+  add_spd_rows(report);
+  add_preconditioner_rows(report);
+  add_indefinite_rows(report);
+  add_amg_scaling_rows(report);
+}
+
+}  // namespace hofem::verification
