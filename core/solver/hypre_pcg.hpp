@@ -1,11 +1,50 @@
 #pragma once
-// hypre's own PCG with BoomerAMG, for comparison with our CG + "amg".
-// PLACEHOLDER: being implemented.
+// hypre's own PCG (HYPRE_ParCSRPCG*) preconditioned with BoomerAMG, for
+// comparison with our CG + "amg" (solver/krylov.hpp) and as the solver of the
+// distributed path to come. Same contract as KrylovSolver: stops when the
+// relative residual ||b - A x|| / ||b|| reaches the tolerance (checked on the true
+// residual after hypre stops), throws std::runtime_error if it does not converge.
 #include "solver/linear_solver.hpp"
 
 #include <memory>
+#include <string>
 
 namespace hofem {
+
+struct HyprePcgResult {
+  bool converged = false;
+  int iterations = 0;                 ///< summed over restarts
+  int restarts = 0;                   ///< re-runs from the last iterate because the true residual missed
+  double relative_residual = 0.0;     ///< true ||b - A x|| / ||b||
+  double hypre_relative_residual = 0.0;  ///< hypre's (recursively updated) estimate at its stop
+};
+
+class HyprePcgSolver final : public LinearSolver {
+ public:
+  /// amg_variant: one of boomeramg_variant_names().
+  explicit HyprePcgSolver(const std::string& amg_variant = "amg");
+  ~HyprePcgSolver() override;
+  std::string_view name() const override { return "hypre-pcg+amg"; }
+  void analyze(const SparseMatrix& A) override;
+  /// Converts A and sets BoomerAMG up; false (reason in last_error()) if A has
+  /// non-finite entries, a non-positive diagonal or hypre fails.
+  bool factorize(const SparseMatrix& A) override;
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
+  void set_discretization(const Discretization& d) override;
+  void set_relative_tolerance(double rtol) override { rtol_ = rtol; }
+  bool is_iterative() const override { return true; }
+  int last_iterations() const override { return last_.iterations; }
+  const HyprePcgResult& last_result() const { return last_; }
+  const std::string& last_error() const { return error_; }
+
+ private:
+  struct Impl;  // hypre objects, kept out of this header
+  std::unique_ptr<Impl> impl_;
+  double rtol_ = 1e-8;
+  int max_iterations_ = 5000;  // as KrylovOptions
+  HyprePcgResult last_;
+  std::string error_;
+};
 
 std::unique_ptr<LinearSolver> make_hypre_pcg_solver();
 
