@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Turns reports/verification.json and reports/benchmarks.json into PNG plots and
-prints a short summary table. Run with Debian's interpreter (python3-numpy,
+prints a short summary table; with reports/solver_benchmarks.json (the solver
+sweep) also its plots, tables and target verdicts (scripts/plot_solver_sweep.py). Run with Debian's interpreter (python3-numpy,
 python3-matplotlib): /usr/bin/python3 scripts/plot_reports.py reports
 """
 import json
@@ -17,6 +18,9 @@ try:
 except ImportError as e:  # pragma: no cover - environment problem, say what is missing
     sys.exit(f"plot_reports: {e}; install the Debian packages python3-numpy python3-matplotlib "
              f"and run with /usr/bin/python3")
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from plot_solver_sweep import plot_sweep  # noqa: E402  (issue 4's solver sweep)
 
 RULE_NAME = re.compile(r"^(\w+) (\S+) \(n=(\d+), degree (\d+)\)$")
 
@@ -309,6 +313,7 @@ def main():
     plot_assembly(bench, reports / "benchmark_assembly.png")
     summary(report, bench)
     print_mms_table(report)
+    plot_sweep(reports)  # solver_benchmarks.json and solver_histories.json, if the sweep ran
     print(f"\nplots: {', '.join(sorted(p.name for p in reports.glob('*.png')))}")
 
 

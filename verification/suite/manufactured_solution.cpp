@@ -97,60 +97,41 @@ void perturb_interior_vertices(Mesh& linear, double h, double amplitude, unsigne
 
 }  // namespace
 
-MmsResult run_mms(const MmsCase& c) {
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
+MmsProblem::MmsProblem(const MmsCase& c) {
   if (c.problem != "linear" && c.problem != "neohookean")
     throw std::invalid_argument(fmt::format("mms: unknown problem '{}' (valid: linear, neohookean)", c.problem));
-  const bool linear = c.problem == "linear";
-  const auto material = make_material(linear ? "linear" : "neohookean", LameParameters::from_young_poisson(1.0, 0.3));
-  ManufacturedDisplacement ustar{linear ? 1.0 : 0.1};
+  linear = c.problem == "linear";
+  material = make_material(linear ? "linear" : "neohookean", LameParameters::from_young_poisson(1.0, 0.3));
+  ustar = ManufacturedDisplacement{linear ? 1.0 : 0.1};
 
-  Mesh mesh = c.cell == CellType::Tetrahedron ? box_tet_mesh(unit_cube(c.n)) : box_hex_mesh(unit_cube(c.n));
-  const double h = 1.0 / c.n;
+  mesh = c.cell == CellType::Tetrahedron ? box_tet_mesh(unit_cube(c.n)) : box_hex_mesh(unit_cube(c.n));
+  h = 1.0 / c.n;
   if (c.perturbed) perturb_interior_vertices(mesh, h, 0.1, 1000u + static_cast<unsigned>(c.n));
   if (c.order > 1) mesh = upgrade_order(mesh, c.order);
 
-  const Material& mat = *material;
-  VectorField body_force = [&](const Eigen::Vector3d& X) {
+  body_force = [this](const Eigen::Vector3d& X) {
     const Mat3 F = Mat3::Identity() + ustar.gradient(X);
     Eigen::Matrix3d H[3];
     ustar.hessians(X, H);
-    return equilibrium_body_force(mat.stress_derivative(F), H);
+    return equilibrium_body_force(material->stress_derivative(F), H);
   };
-  StaticOptions opt;
-  opt.quadrature_degree = default_quadrature_degree(mesh.cell, mesh.order, linear);
-  opt.load_degree = 2 * mesh.order + 2;
-  opt.linear_solver = c.linear_solver;
+  dirichlet = {{mesh.node_set("boundary"), [this](const Eigen::Vector3d& X) { return ustar.value(X); }}};
+  options.quadrature_degree = default_quadrature_degree(mesh.cell, mesh.order, linear);
+  options.load_degree = 2 * mesh.order + 2;
+  options.linear_solver = c.linear_solver;
   // The discretisation error is >= 1e-7 relative at every size run here; the
   // nonlinear solve is converged to 1e-10 of the load so it does not pollute it.
-  opt.newton.rtol = 1e-10;
-  StaticElasticity problem(mesh, mat, {{mesh.node_set("boundary"), [&](const Eigen::Vector3d& X) { return ustar.value(X); }}},
-                           body_force, opt);
-  const StaticReport rep = problem.solve();
+  options.newton.rtol = 1e-10;
+}
 
-  MmsResult r;
-  r.cells = mesh.num_elements();
-  r.nodes = mesh.num_nodes();
-  r.dofs = problem.dofs().num_free();
-  r.h = h;
-  r.newton_iterations = rep.newton_iterations;
-  r.converged = rep.converged;
-  r.message = rep.message;
-  r.setup_seconds = rep.setup_seconds;
-  r.assembly_seconds = rep.assembly_seconds;
-  r.solve_seconds = rep.solve_seconds;
-  r.quadrature_degree = opt.quadrature_degree;
-  for (const auto& step : rep.steps)
-    for (const auto& it : step.history) r.newton_residuals.push_back(it.residual);
-
+MmsErrors mms_errors(const Mesh& mesh, const ManufacturedDisplacement& ustar, const Eigen::VectorXd& u) {
   // Errors with a rule of degree >= p + 3 (issue 3), over the isoparametric map.
-  r.error_degree = std::max(mesh.order + 3, 2 * mesh.order);
-  const QuadratureRule& rule = quadrature_rule(mesh.cell, r.error_degree);
-  const BasisTabulation& tab = cached_tabulation(mesh.cell, mesh.order, r.error_degree);
-  const Eigen::VectorXd& u = problem.displacement();
+  MmsErrors err;
+  err.degree = std::max(mesh.order + 3, 2 * mesh.order);
+  const QuadratureRule& rule = quadrature_rule(mesh.cell, err.degree);
+  const BasisTabulation& tab = cached_tabulation(mesh.cell, mesh.order, err.degree);
   double l2 = 0.0, h1 = 0.0;
-  Eigen::MatrixXd cell_l2(1, mesh.num_elements());  // per-element L2 error, for the VTU output
+  err.cell_l2.resize(1, mesh.num_elements());
   const int n = mesh.nodes_per_element();
   Eigen::Matrix3Xd X(3, n), U(3, n);
   for (int e = 0; e < mesh.num_elements(); ++e) {
@@ -169,16 +150,47 @@ MmsResult run_mms(const MmsCase& c) {
       element_l2 += e2;
       h1 += w * (U * dNdX - ustar.gradient(Xq)).squaredNorm();
     }
-    cell_l2(0, e) = std::sqrt(element_l2);
+    err.cell_l2(0, e) = std::sqrt(element_l2);
   }
+  err.l2 = std::sqrt(l2);
+  err.h1 = std::sqrt(h1);
+  return err;
+}
+
+MmsResult run_mms(const MmsCase& c) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  const MmsProblem p(c);
+  const Mesh& mesh = p.mesh;
+  StaticElasticity problem(mesh, *p.material, p.dirichlet, p.body_force, p.options);
+  const StaticReport rep = problem.solve();
+
+  MmsResult r;
+  r.cells = mesh.num_elements();
+  r.nodes = mesh.num_nodes();
+  r.dofs = problem.dofs().num_free();
+  r.h = p.h;
+  r.newton_iterations = rep.newton_iterations;
+  r.converged = rep.converged;
+  r.message = rep.message;
+  r.setup_seconds = rep.setup_seconds;
+  r.assembly_seconds = rep.assembly_seconds;
+  r.solve_seconds = rep.solve_seconds;
+  r.quadrature_degree = p.options.quadrature_degree;
+  for (const auto& step : rep.steps)
+    for (const auto& it : step.history) r.newton_residuals.push_back(it.residual);
+
+  const Eigen::VectorXd& u = problem.displacement();
+  const MmsErrors err = mms_errors(mesh, p.ustar, u);
+  r.error_degree = err.degree;
   if (!c.vtu.empty()) {
     Eigen::MatrixXd disp = Eigen::Map<const Eigen::MatrixXd>(u.data(), 3, mesh.num_nodes());
     Eigen::MatrixXd exact(3, mesh.num_nodes());
-    for (int i = 0; i < mesh.num_nodes(); ++i) exact.col(i) = ustar.value(mesh.nodes.col(i));
-    write_vtu(c.vtu, mesh, {{"displacement", disp}, {"exact_displacement", exact}}, {{"l2_error", cell_l2}});
+    for (int i = 0; i < mesh.num_nodes(); ++i) exact.col(i) = p.ustar.value(mesh.nodes.col(i));
+    write_vtu(c.vtu, mesh, {{"displacement", disp}, {"exact_displacement", exact}}, {{"l2_error", err.cell_l2}});
   }
-  r.l2_error = std::sqrt(l2);
-  r.h1_error = std::sqrt(h1);
+  r.l2_error = err.l2;
+  r.h1_error = err.h1;
   r.total_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return r;
 }

@@ -10,10 +10,14 @@
 // with s = 1 (linear elasticity) or 0.1 (Neo-Hookean), E = 1, nu = 0.3.
 // Body force f = -Div P(F*), F* = I + grad u*, evaluated exactly:
 //   f_i = - sum_{j,k,l} dP_ij/dF_kl (F*) d^2 u*_k / dX_l dX_j.
+#include "material/material.hpp"
+#include "mesh/mesh.hpp"
+#include "problem/static_elasticity.hpp"
 #include "quadrature/cell_type.hpp"
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,6 +58,37 @@ struct MmsResult {
   std::vector<double> newton_residuals;  ///< |g| before each Newton step, all load steps
   std::string message;
 };
+
+/// The problem of a case, built but not solved (run_mms solves it with Newton;
+/// the solver benchmarks assemble its linear system once and time solvers on it):
+/// mesh (perturbed and raised to the case's order), material, u*, the body force
+/// that balances u*, Dirichlet data u = u* on the whole boundary, and the static
+/// options run_mms uses (quadrature degrees, linear solver, Newton tolerance).
+/// Not copyable: body_force and dirichlet refer to the members.
+struct MmsProblem {
+  explicit MmsProblem(const MmsCase& c);
+  MmsProblem(const MmsProblem&) = delete;
+  MmsProblem& operator=(const MmsProblem&) = delete;
+
+  bool linear = true;  ///< linear elasticity (one linear solve is the whole solution)
+  std::unique_ptr<Material> material;
+  ManufacturedDisplacement ustar;
+  Mesh mesh;
+  double h = 0.0;
+  VectorField body_force;
+  std::vector<DirichletCondition> dirichlet;
+  StaticOptions options;
+};
+
+struct MmsErrors {
+  double l2 = 0.0, h1 = 0.0;
+  int degree = 0;          ///< degree of the error quadrature, >= p + 3
+  Eigen::MatrixXd cell_l2;  ///< 1 x elements: per-element L2 error (for VTU output)
+};
+
+/// L2 and H1-seminorm errors of a nodal displacement u (3 * num_nodes) against
+/// u*, integrated over the isoparametric map with a rule of degree >= p + 3.
+MmsErrors mms_errors(const Mesh& mesh, const ManufacturedDisplacement& ustar, const Eigen::VectorXd& u);
 
 MmsResult run_mms(const MmsCase& c);
 
