@@ -5,13 +5,8 @@
 #include <Eigen/Core>
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace hofem {
 

@@ -13,7 +13,11 @@
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace hofem {
 namespace {
@@ -94,7 +98,7 @@ TEST(PMultigrid, ProlongationReproducesAffineFieldsExactly) {
 
 // M^-1 as a dense matrix from unit vectors. Symmetric: the pre- and post-smoothers
 // are adjoint and the coarse correction is symmetric, so only rounding (CHOLMOD's
-// solves, the Chebyshev recurrences; ~1e-15 relative observed) is left: 1e-12.
+// solves, the smoother recurrences; <= 1.1e-15 relative observed) is left: 1e-12.
 // Positive definite: the eigenvalues of M^-1 A (via L^T M^-1 L, A = L L^T) are
 // 1 minus those of the symmetric V-cycle's error propagator, which lie in
 // [0, 1) when the smoother contracts; they must be in (0, 1] (1e-10 above 1 is
@@ -126,11 +130,10 @@ TEST(PMultigrid, VCycleIsSymmetricPositiveDefinite) {
       const Eigen::VectorXd eig =
           Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(L.transpose() * S * L, Eigen::EigenvaluesOnly).eigenvalues();
       EXPECT_GT(eig.minCoeff(), 0.0) << el.name << sm;
-      std::printf("LAMBDA %s %s %.4f %.6f\n", el.name, sm, eig.minCoeff(), eig.maxCoeff());
       EXPECT_LE(eig.maxCoeff(), 1.0 + 1e-10) << el.name << sm;
-      // The V-cycle's quality, observed lambda_min (Chebyshev / SGS): Tet10 0.42 / 0.26,
-      // Tet20 0.21 / 0.09, Hex20 0.55 / 0.23. Below 0.05 means a broken smoother or
-      // transfer.
+      // The V-cycle's quality, observed lambda_min (default Chebyshev / SGS): Tet10
+      // 0.42 / 0.26, Tet20 0.21 / 0.09, Hex20 0.55 / 0.23. Below 0.05 means a broken
+      // smoother or transfer.
       EXPECT_GT(eig.minCoeff(), 0.05) << el.name << sm;
     }
 }
@@ -149,7 +152,6 @@ CgRun solve(const CubeSystem& s, const std::string& name, const Eigen::VectorXd&
   CgRun run{0, {}};
   cg.solve(b, run.x);
   run.iterations = cg.last_iterations();
-  std::printf("ITS %s N=%ld %d\n", name.c_str(), (long)s.K.rows(), run.iterations);
   return run;
 }
 
@@ -210,8 +212,8 @@ TEST(PMultigrid, CoarseAnalysisIsReusedAcrossSetups) {
 }
 
 // Newton on a Neo-Hookean cube with CG + pmg: the static solver hands the
-// preconditioner its mesh, every Newton Hessian reuses the coarse analysis, and
-// the solution is CHOLMOD's. Both stop at |g| <= 1e-10 of the load, so they agree
+// preconditioner its mesh, pmg is set up again for every Newton Hessian, and the
+// solution is CHOLMOD's. Both stop at |g| <= 1e-10 of the load, so they agree
 // to ~cond(K) * 1e-10 (cond ~1e3 here): 1e-6 relative.
 TEST(PMultigrid, DrivesNewtonOnANonlinearMaterial) {
   for (const Element& el : {kTet10, kHex20}) {
