@@ -15,6 +15,8 @@ CholmodSolver::CholmodSolver() {
 
 CholmodSolver::~CholmodSolver() {
   if (factor_) cholmod_l_free_factor(&factor_, &common_);
+  for (cholmod_dense** d : {&X_, &Y_, &E_})
+    if (*d) cholmod_l_free_dense(d, &common_);
   cholmod_l_finish(&common_);
 }
 
@@ -43,12 +45,12 @@ void CholmodSolver::analyze(const SparseMatrix& A) {
   cholmod_sparse s = view(A);
   factor_ = cholmod_l_analyze(&s, &common_);
   if (!factor_) throw std::runtime_error(fmt::format("CHOLMOD analyze failed (status {})", common_.status));
-  n_ = A.rows();
+  pattern_ = pattern_fingerprint(A);
   ++analyses_;
 }
 
 bool CholmodSolver::factorize(const SparseMatrix& A) {
-  if (!factor_ || A.rows() != n_) analyze(A);
+  if (!factor_ || pattern_fingerprint(A) != pattern_) analyze(A);
   cholmod_sparse s = view(A);
   cholmod_l_factorize(&s, factor_, &common_);
   ++factorizations_;
@@ -67,10 +69,13 @@ void CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   B.x = const_cast<double*>(b.data());
   B.xtype = CHOLMOD_REAL;
   B.dtype = CHOLMOD_DOUBLE;
-  cholmod_dense* X = cholmod_l_solve(CHOLMOD_A, factor_, &B, &common_);
-  if (!X) throw std::runtime_error(fmt::format("CHOLMOD solve failed (status {})", common_.status));
-  x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(X->x), b.size());
-  cholmod_l_free_dense(&X, &common_);
+  // solve2 keeps X and its workspaces between calls (allocated on the first
+  // solve, or again when the size changes): no allocation per solve, which
+  // matters where the solve runs inside every preconditioner application (the
+  // coarse level of pmg).
+  if (!cholmod_l_solve2(CHOLMOD_A, factor_, &B, nullptr, &X_, nullptr, &Y_, &E_, &common_))
+    throw std::runtime_error(fmt::format("CHOLMOD solve failed (status {})", common_.status));
+  x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(X_->x), b.size());
 }
 
 double CholmodSolver::factor_nonzeros() const { return factor_ ? common_.lnz : 0.0; }

@@ -3,7 +3,8 @@
 // int interface refuses factors with more than 2^31 entries, which P2/P3 meshes
 // reach well below 10^6 unknowns. The symbolic analysis (fill-reducing ordering,
 // supernodal structure) is done once per pattern and reused by every
-// factorisation of every Newton iteration and time step.
+// factorisation of every Newton iteration and time step; factorize() redoes it
+// when the pattern changes (pattern_fingerprint).
 #include "solver/linear_solver.hpp"
 
 #include <cholmod.h>
@@ -29,7 +30,8 @@ class CholmodSolver final : public LinearSolver {
   cholmod_sparse view(const SparseMatrix& A) const;
   cholmod_common common_;
   cholmod_factor* factor_ = nullptr;
-  std::int64_t n_ = -1;
+  cholmod_dense *X_ = nullptr, *Y_ = nullptr, *E_ = nullptr;  // solve2 result and workspaces, reused
+  std::uint64_t pattern_ = 0;  // pattern_fingerprint of the analysed matrix
 };
 
 }  // namespace hofem

@@ -21,10 +21,10 @@ class EigenLdltSolver final : public LinearSolver {
   void analyze(const SparseMatrix& A) override {
     ldlt_.analyzePattern(A);
     ++analyses_;
-    analyzed_ = true;
+    pattern_ = pattern_fingerprint(A);
   }
   bool factorize(const SparseMatrix& A) override {
-    if (!analyzed_) analyze(A);
+    if (analyses_ == 0 || pattern_fingerprint(A) != pattern_) analyze(A);
     ldlt_.factorize(A);
     ++factorizations_;
     if (ldlt_.info() != Eigen::Success) return false;
@@ -36,7 +36,7 @@ class EigenLdltSolver final : public LinearSolver {
 
  private:
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper> ldlt_;
-  bool analyzed_ = false;
+  std::uint64_t pattern_ = 0;  // pattern_fingerprint of the analysed matrix
 };
 
 }  // namespace

@@ -66,17 +66,6 @@ namespace {
 // busy ones), which 2e5 nonzeros (~0.1-0.2 ms of products) amortise.
 constexpr std::int64_t kParallelNonzeros = 200000;
 
-// 64-bit FNV-1a of A's pattern, so setup() notices a new pattern (and redoes the
-// symbolic Galerkin product and the coarse CHOLMOD analysis) without keeping a copy.
-std::uint64_t pattern_hash(const SparseMatrix& A) {
-  std::uint64_t h = 1469598103934665603ull;
-  auto mix = [&h](std::int64_t v) { h = (h ^ static_cast<std::uint64_t>(v)) * 1099511628211ull; };
-  mix(A.rows());
-  mix(A.cols());
-  for (Eigen::Index j = 0; j <= A.outerSize(); ++j) mix(A.outerIndexPtr()[j]);
-  for (Eigen::Index q = 0; q < A.nonZeros(); ++q) mix(A.innerIndexPtr()[q]);
-  return h;
-}
 
 }  // namespace
 
@@ -142,7 +131,7 @@ bool PMultigridPreconditioner::prepare_levels(const SparseMatrix& A) {
       if (i == free.size() || !options_.block_scaling || free[i] / 3 != free[i - 1] / 3)
         block_start_.push_back(static_cast<Eigen::Index>(i));
   }
-  const std::uint64_t hash = pattern_hash(A);
+  const std::uint64_t hash = pattern_fingerprint(A);
   if (new_pattern || hash != pattern_hash_ || !galerkin_.analyzed()) {
     galerkin_.analyze(A, transfer_);
     Ac_ = galerkin_.zero_matrix();
@@ -151,7 +140,7 @@ bool PMultigridPreconditioner::prepare_levels(const SparseMatrix& A) {
   }
   if (coarse_size() == 0) return true;  // every vertex constrained: smoothing only
   galerkin_.compute(A, transfer_, Ac_);
-  if (new_pattern) coarse_->analyze(Ac_);
+  // CHOLMOD re-analyses by itself when P^T A P has a new pattern.
   if (!coarse_->factorize(Ac_)) {
     error_ = "pmg: coarse operator P^T A P is not positive definite (A is not SPD)";
     return false;

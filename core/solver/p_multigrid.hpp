@@ -80,7 +80,7 @@ class PMultigridPreconditioner final : public Preconditioner {
   // Built once per discretization (Mesh and DofMap, by address) / pattern, reused by every setup.
   const Mesh* mesh_for_ = nullptr;
   const DofMap* dofs_for_ = nullptr;
-  std::uint64_t pattern_hash_ = 0;
+  std::uint64_t pattern_hash_ = 0;  // pattern_fingerprint(A) the Galerkin product was analysed for
   PProlongation transfer_;
   GalerkinProduct galerkin_;
   std::vector<Eigen::Index> block_start_;  ///< nodal (or single-DOF) blocks of the free numbering

@@ -29,12 +29,12 @@ void UmfpackSolver::analyze(const SparseMatrix& A) {
   const int status = umfpack_dl_symbolic(A.rows(), A.cols(), idx(A.outerIndexPtr()), idx(A.innerIndexPtr()), A.valuePtr(),
                                          &symbolic_, nullptr, nullptr);
   if (status != UMFPACK_OK) throw std::runtime_error(fmt::format("UMFPACK symbolic analysis failed (status {})", status));
-  n_ = A.rows();
+  pattern_ = pattern_fingerprint(A);
   ++analyses_;
 }
 
 bool UmfpackSolver::factorize(const SparseMatrix& A) {
-  if (!symbolic_ || A.rows() != n_) analyze(A);
+  if (!symbolic_ || pattern_fingerprint(A) != pattern_) analyze(A);
   free_numeric();
   const int status =
       umfpack_dl_numeric(idx(A.outerIndexPtr()), idx(A.innerIndexPtr()), A.valuePtr(), symbolic_, &numeric_, nullptr, nullptr);

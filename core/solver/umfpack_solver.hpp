@@ -25,7 +25,7 @@ class UmfpackSolver final : public LinearSolver {
   void* symbolic_ = nullptr;
   void* numeric_ = nullptr;
   const SparseMatrix* A_ = nullptr;
-  std::int64_t n_ = -1;
+  std::uint64_t pattern_ = 0;  // pattern_fingerprint of the analysed matrix
 };
 
 }  // namespace hofem
