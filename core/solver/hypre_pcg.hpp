@@ -35,7 +35,7 @@ class HyprePcgSolver final : public LinearSolver {
   bool is_iterative() const override { return true; }
   int last_iterations() const override { return last_.iterations; }
   const HyprePcgResult& last_result() const { return last_; }
-  const std::string& last_error() const { return error_; }
+  std::string last_error() const override { return error_; }
 
  private:
   struct Impl;  // hypre objects, kept out of this header

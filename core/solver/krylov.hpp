@@ -52,6 +52,7 @@ class KrylovSolver final : public LinearSolver {
   void set_relative_tolerance(double rtol) override { options_.rtol = rtol; }
   bool is_iterative() const override { return true; }
   int last_iterations() const override { return last_.iterations; }
+  std::string last_error() const override { return M_->last_error(); }
   const KrylovResult& last_result() const { return last_; }
   const Preconditioner& preconditioner() const { return *M_; }
 

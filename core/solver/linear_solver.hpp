@@ -33,6 +33,9 @@ class LinearSolver {
   virtual bool is_iterative() const { return false; }
   /// Iterations of the last solve (0 for direct solvers).
   virtual int last_iterations() const { return 0; }
+  /// Why the last factorize() returned false, when the solver knows more than
+  /// "not positive definite" (e.g. a preconditioner that cannot apply here).
+  virtual std::string last_error() const { return {}; }
   /// Number of symbolic analyses / numeric factorisations done (run statistics).
   int analyses() const { return analyses_; }
   int factorizations() const { return factorizations_; }

@@ -85,7 +85,11 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
       ok = solver.factorize(K);
     }
     if (!ok) {
-      result.message = "could not make the Hessian positive definite";
+      // A preconditioner that cannot apply at all (pmg on order 1) fails every
+      // shift too; its reason is what the user needs.
+      const std::string why = solver.last_error();
+      result.message = "could not make the Hessian positive definite" +
+                       (why.empty() ? std::string() : fmt::format(" (solver {}: {})", solver.name(), why));
       result.iterations = it;
       result.history.push_back(rec);
       return result;

@@ -249,6 +249,18 @@ TEST(PMultigrid, RefusesWithoutDiscretizationAndOnOrderOne) {
     EXPECT_FALSE(M1->setup(p1.K));
     EXPECT_NE(M1->last_error().find("pmg needs element order >= 2"), std::string::npos) << M1->last_error();
   }
+  // Newton passes the reason on instead of only "not positive definite".
+  {
+    const Mesh m = box_mesh(unit_cube(2), CellType::Tetrahedron, 1);
+    const auto mat = make_material("neohookean", LameParameters::from_young_poisson(1.0, 0.3));
+    VectorField pull = [](const Eigen::Vector3d& X) { return Eigen::Vector3d(0.1 * X[0], 0.0, 0.0); };
+    StaticOptions opt;
+    opt.linear_solver = "cg+pmg";
+    StaticElasticity p(m, *mat, {{m.node_set("xmin"), nullptr}, {m.node_set("xmax"), pull}}, nullptr, opt);
+    const StaticReport r = p.solve();
+    EXPECT_FALSE(r.converged);
+    EXPECT_NE(r.message.find("pmg needs element order >= 2"), std::string::npos) << r.message;
+  }
   // A matrix that does not belong to the DOF map.
   auto M2 = make_preconditioner("pmg");
   const CubeSystem other(3, CellType::Tetrahedron, 2);
