@@ -15,6 +15,15 @@ double safe_norm(const Eigen::VectorXd& b) {
   return n > 0.0 ? n : 1.0;
 }
 
+// Every method ends the same way: the relative residual it reports is the true
+// one, ||b - A x|| / ||b||, not the recurrence's (which drifts from it in
+// floating point), and convergence means no breakdown and that residual <= rtol.
+void finish(KrylovResult& res, const SparseMatrix& A, const Eigen::VectorXd& b, const Eigen::VectorXd& x, double bn,
+            double rtol) {
+  res.relative_residual = (b - A * x).norm() / bn;
+  res.converged = res.breakdown.empty() && res.relative_residual <= rtol;
+}
+
 }  // namespace
 
 // Thesis Algorithm 4 (preconditioned CG).
@@ -48,8 +57,7 @@ KrylovResult conjugate_gradient(const SparseMatrix& A, const Eigen::VectorXd& b,
   }
   // The recursively updated r drifts from b - A x by ~eps cond(A); the verdict
   // uses the true residual.
-  res.relative_residual = (b - A * x).norm() / bn;
-  res.converged = res.breakdown.empty() && res.relative_residual <= opt.rtol;
+  finish(res, A, b, x, bn, opt.rtol);
   return res;
 }
 
@@ -86,8 +94,7 @@ KrylovResult conjugate_residual(const SparseMatrix& A, const Eigen::VectorXd& b,
     ++res.iterations;
     res.history.push_back(r.norm() / bn);
   }
-  res.relative_residual = (b - A * x).norm() / bn;  // true residual, as for CG
-  res.converged = res.breakdown.empty() && res.relative_residual <= opt.rtol;
+  finish(res, A, b, x, bn, opt.rtol);
   return res;
 }
 
@@ -159,8 +166,7 @@ KrylovResult minres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::Vect
     res.history.push_back(phibar * scale);
     if (beta == 0.0) break;  // exact Krylov space exhausted: x is the solution
   }
-  res.relative_residual = (b - A * x).norm() / bn;
-  res.converged = res.breakdown.empty() && res.relative_residual <= opt.rtol;
+  finish(res, A, b, x, bn, opt.rtol);
   return res;
 }
 
@@ -225,6 +231,7 @@ KrylovResult gmres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::Vecto
     res.history.back() = beta / bn;  // true residual at the restart
     if (!res.breakdown.empty()) break;
   }
+  // r is the true residual of the last restart: no second product needed.
   res.relative_residual = res.history.back();
   res.converged = res.breakdown.empty() && res.relative_residual <= opt.rtol;
   return res;

@@ -92,10 +92,14 @@ TEST(StaticElasticity, LoadSteppingRecoversWhereAFullStepInverts) {
     StaticElasticity p(m, *mat, {{m.node_set("xmin"), nullptr}, {m.node_set("xmax"), push}}, nullptr, opt);
     const StaticReport r = p.solve();
     EXPECT_TRUE(r.converged) << r.message;
-    if (!predictor) EXPECT_GT(r.load_steps, 1) << "a full step should have failed";
+    if (!predictor) {
+      EXPECT_GT(r.load_steps, 1) << "a full step should have failed";
+    }
     EXPECT_EQ(r.symbolic_analyses, 1);  // one symbolic factorisation for the whole solve
     for (const auto& step : r.steps)
-      if (step.converged) EXPECT_LE(step.final_residual, 1e-9 * step.force_scale);
+      if (step.converged) {
+        EXPECT_LE(step.final_residual, 1e-9 * step.force_scale);
+      }
     const int corner = m.node_set("xmax").front();
     EXPECT_EQ(p.displacement().segment<3>(3 * corner), push(m.nodes.col(corner)));  // prescribed exactly
   }
