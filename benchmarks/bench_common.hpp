@@ -8,7 +8,8 @@
 // Presets (HOFEM_BENCH_PRESET): "quick" (default, part of scripts/run) runs every
 // solver x preconditioner at ~1e3 unknowns, then at ~1e4 / ~1e5 the 6 / 3
 // preconditioners (or direct solvers) predicted fastest there, each with its
-// predicted-fastest Krylov method, 10 s budget per run; "full"
+// predicted-fastest Krylov method, plus the multilevel preconditioners (amg,
+// pmg) whenever they solved the size below; 10 s budget per run; "full"
 // (scripts/bench-full) runs every combination up to ~1e5 and the 4 predicted
 // fastest at ~1e6, 120 s per run.
 // Why: every combination at every size is hours on these 2-core machines (one
