@@ -10,6 +10,7 @@
 #include "assembly/assembler.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
+#include "elastic_test_systems.hpp"
 #include "solver/krylov.hpp"
 #include "solver/linear_solver.hpp"
 
@@ -19,35 +20,14 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-// A clamped elastic body (xmin face fixed) and a matrix assembled on it.
+// A clamped linear-elastic cube with a label and the smooth right-hand side.
 struct ElasticSystem {
   std::string label;
-  Mesh mesh;
-  DofMap dofs;
-  SparseMatrix K;
+  ClampedElasticBody body;
   Eigen::VectorXd b;
-  ElasticSystem(std::string l, Mesh m)
-      : label(std::move(l)), mesh(std::move(m)), dofs(mesh.num_nodes(), mesh.node_set("xmin")) {}
-  Discretization discretization() const { return {&mesh, &dofs}; }
+  ElasticSystem(std::string l, CellType cell, int order, int n)
+      : label(std::move(l)), body(cell, order, n), b(smooth_rhs(body.unknowns())) {}
 };
-
-Eigen::VectorXd smooth_rhs(Eigen::Index n) {
-  Eigen::VectorXd b(n);
-  for (Eigen::Index i = 0; i < n; ++i) b[i] = std::sin(0.37 * static_cast<double>(i)) + 0.1;
-  return b;
-}
-
-// Linear elasticity (E = 1, nu = 0.3) stiffness: SPD with the clamped face.
-ElasticSystem linear_system(std::string label, CellType cell, int order, int n) {
-  ElasticSystem s(std::move(label), box_mesh(unit_cube(n), cell, order));
-  const Assembler a(s.mesh, s.dofs);
-  const auto mat = make_material("linear", LameParameters::from_young_poisson(1.0, 0.3));
-  Eigen::VectorXd g;
-  s.K = a.new_matrix();
-  a.hessian(*mat, Eigen::Map<const Eigen::VectorXd>(s.mesh.nodes.data(), 3 * s.mesh.num_nodes()), g, s.K, false);
-  s.b = smooth_rhs(s.K.rows());
-  return s;
-}
 
 // Smallest eigenvalue of an SPD matrix by inverse iteration with CHOLMOD. The
 // Rayleigh quotient approaches lambda_min from above, so 1/lambda bounds
@@ -77,16 +57,16 @@ double gershgorin_lambda_max(const SparseMatrix& A) {
 void add_spd_rows(Report& report) {
   const double rtol = 1e-10;
   const ElasticSystem systems[] = {
-      linear_system("Tet4 n=6", CellType::Tetrahedron, 1, 6), linear_system("Tet10 n=3", CellType::Tetrahedron, 2, 3),
-      linear_system("Tet20 n=2", CellType::Tetrahedron, 3, 2), linear_system("Hex8 n=6", CellType::Hexahedron, 1, 6),
-      linear_system("Hex20 n=3", CellType::Hexahedron, 2, 3)};
+      {"Tet4 n=6", CellType::Tetrahedron, 1, 6}, {"Tet10 n=3", CellType::Tetrahedron, 2, 3},
+      {"Tet20 n=2", CellType::Tetrahedron, 3, 2}, {"Hex8 n=6", CellType::Hexahedron, 1, 6},
+      {"Hex20 n=3", CellType::Hexahedron, 2, 3}};
   for (const ElasticSystem& s : systems) {
     auto chol = make_linear_solver("cholmod");
-    chol->analyze(s.K);
-    if (!chol->factorize(s.K)) throw std::runtime_error("solver checks: stiffness not SPD for " + s.label);
+    chol->analyze(s.body.K);
+    if (!chol->factorize(s.body.K)) throw std::runtime_error("solver checks: stiffness not SPD for " + s.label);
     Eigen::VectorXd x_ref, x;
     chol->solve(s.b, x_ref);
-    const double lambda_min = smallest_eigenvalue(s.K, *chol);
+    const double lambda_min = smallest_eigenvalue(s.body.K, *chol);
     // CHOLMOD's own error (backward stable: ~cond * eps) is far below this
     // bound.
     const double bound = rtol * s.b.norm() / (lambda_min * x_ref.norm());
@@ -96,12 +76,12 @@ void add_spd_rows(Report& report) {
     // UMFPACK uses on an SPD matrix behaves alike). cond(K) is bounded from
     // above by the Gershgorin bound on lambda_max over the inverse-iteration
     // lambda_min; 100 covers the two solvers' constants.
-    const double cond_bound = gershgorin_lambda_max(s.K) / lambda_min;
+    const double cond_bound = gershgorin_lambda_max(s.body.K) / lambda_min;
     const double direct_bound = 100.0 * cond_bound * kEps;
-    report.measure("solvers.spd", s.label + " unknowns", static_cast<double>(s.K.rows()));
+    report.measure("solvers.spd", s.label + " unknowns", static_cast<double>(s.body.K.rows()));
     for (const std::string& name : linear_solver_names()) {
       if (name == "cholmod") continue;
-      if (name.ends_with("+pmg") && s.mesh.order < 2) continue;  // no coarser p level
+      if (name.ends_with("+pmg") && s.body.mesh.order < 2) continue;  // no coarser p level
       std::unique_ptr<LinearSolver> solver;
       std::string error;
       double residual = std::numeric_limits<double>::quiet_NaN(), diff = residual;
@@ -109,13 +89,13 @@ void add_spd_rows(Report& report) {
 
       try {
         solver = make_linear_solver(name);
-        solver->set_discretization(s.discretization());
+        solver->set_discretization(s.body.discretization());
         solver->set_relative_tolerance(rtol);
         iterative = solver->is_iterative();
-        solver->analyze(s.K);
-        if (!solver->factorize(s.K)) throw std::runtime_error("set-up refused the SPD matrix");
+        solver->analyze(s.body.K);
+        if (!solver->factorize(s.body.K)) throw std::runtime_error("set-up refused the SPD matrix");
         solver->solve(s.b, x);
-        residual = (s.b - s.K * x).norm() / s.b.norm();
+        residual = (s.b - s.body.K * x).norm() / s.b.norm();
         diff = (x - x_ref).norm() / x_ref.norm();
       } catch (const std::exception& e) {
         error = e.what();
@@ -138,17 +118,17 @@ void add_spd_rows(Report& report) {
 // Dense M^-1 from unit vectors: symmetric to rounding and positive definite
 // (what CG, CR and MINRES require of a preconditioner).
 void add_preconditioner_rows(Report& report) {
-  const ElasticSystem systems[] = {linear_system("Tet10 n=2", CellType::Tetrahedron, 2, 2),
-                                   linear_system("Hex8 n=4", CellType::Hexahedron, 1, 4)};
+  const ElasticSystem systems[] = {{"Tet10 n=2", CellType::Tetrahedron, 2, 2},
+                                   {"Hex8 n=4", CellType::Hexahedron, 1, 4}};
   for (const ElasticSystem& s : systems)
     for (const std::string& name : preconditioner_names()) {
-      if (name == "pmg" && s.mesh.order < 2) continue;
+      if (name == "pmg" && s.body.mesh.order < 2) continue;
       std::unique_ptr<Preconditioner> M;
       std::string error;
       try {
         M = make_preconditioner(name);
-        M->set_discretization(s.discretization());
-        if (!M->setup(s.K)) error = M->last_error();
+        M->set_discretization(s.body.discretization());
+        if (!M->setup(s.body.K)) error = M->last_error();
       } catch (const std::exception& e) {
         error = e.what();
       }
@@ -157,15 +137,7 @@ void add_preconditioner_rows(Report& report) {
                      Compare::AtLeast, "set-up failed: " + error);
         continue;
       }
-      const Eigen::Index n = s.K.rows();
-      Eigen::MatrixXd Minv(n, n);
-      Eigen::VectorXd e = Eigen::VectorXd::Zero(n), z;
-      for (Eigen::Index i = 0; i < n; ++i) {
-        e[i] = 1.0;
-        M->apply(e, z);
-        Minv.col(i) = z;
-        e[i] = 0.0;
-      }
+      const Eigen::MatrixXd Minv = dense_inverse(*M, s.body.unknowns());
       const double scale = Minv.cwiseAbs().maxCoeff();
       report.check("solvers.preconditioner_spd", fmt::format("{} {} asymmetry", s.label, name),
                    (Minv - Minv.transpose()).cwiseAbs().maxCoeff() / scale, 1e-12, Compare::AtMost,
@@ -257,15 +229,15 @@ void add_amg_scaling_rows(Report& report) {
     try {
       for (int k = 0; k < 4; ++k) {
         const int n = s.n0 << k;
-        const ElasticSystem sys = linear_system("", CellType::Tetrahedron, s.order, n);
+        const ElasticSystem sys = {"", CellType::Tetrahedron, s.order, n};
         auto solver = make_linear_solver("cg+amg");
         solver->set_relative_tolerance(1e-8);
-        solver->analyze(sys.K);
-        solver->factorize(sys.K);
+        solver->analyze(sys.body.K);
+        solver->factorize(sys.body.K);
         Eigen::VectorXd x;
         solver->solve(sys.b, x);
         its.push_back(solver->last_iterations());
-        sizes += fmt::format("{}n={}: {} unknowns {} its", sizes.empty() ? "" : "; ", n, sys.K.rows(), its.back());
+        sizes += fmt::format("{}n={}: {} unknowns {} its", sizes.empty() ? "" : "; ", n, sys.body.K.rows(), its.back());
       }
     } catch (const std::exception& e) {
       report.check("solvers.amg_scaling", fmt::format("Tet order {} cg+amg", s.order), 0.0, 1.0, Compare::AtLeast,

@@ -3,6 +3,7 @@
 // indefinite block, SPD on stiffness matrices, convergence of CG and MINRES to
 // CHOLMOD's solution, Jacobi on uncovered DOFs, reproducibility, error paths.
 #include "assembly/assembler.hpp"
+#include "elastic_test_systems.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "solver/additive_schwarz.hpp"
@@ -22,20 +23,8 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 // A clamped (xmin) unit cube with a linear-elastic stiffness matrix.
-struct System {
-  Mesh mesh;
-  DofMap dofs;
-  SparseMatrix K;
-  System(CellType cell, int order, int n)
-      : mesh(box_mesh(unit_cube(n), cell, order)), dofs(mesh.num_nodes(), mesh.node_set("xmin")) {
-    const Assembler a(mesh, dofs);
-    const auto mat = make_material("linear", LameParameters::from_young_poisson(1.0, 0.3));
-    Eigen::VectorXd g;
-    K = a.new_matrix();
-    a.hessian(*mat, Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), 3 * mesh.num_nodes()), g, K, false);
-  }
-  Discretization discretization() const { return {&mesh, &dofs}; }
-};
+using System = verification::ClampedElasticBody;
+using verification::dense_inverse;
 
 // One unconstrained Tet4: a single block of all 12 DOFs, so S = C_K^+ of the whole matrix.
 struct OneTet {
@@ -61,24 +50,7 @@ Eigen::MatrixXd with_spectrum(const Eigen::VectorXd& lambda, Eigen::MatrixXd& Q)
 
 SparseMatrix sparse(const Eigen::MatrixXd& D) { return D.sparseView(); }
 
-// M^-1 as a dense matrix from its action on unit vectors.
-Eigen::MatrixXd dense_inverse(const Preconditioner& M, Eigen::Index n) {
-  Eigen::MatrixXd Minv(n, n);
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(n), z;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    e[i] = 1.0;
-    M.apply(e, z);
-    Minv.col(i) = z;
-    e[i] = 0.0;
-  }
-  return Minv;
-}
-
-Eigen::VectorXd rhs(Eigen::Index n) {
-  Eigen::VectorXd b(n);
-  for (Eigen::Index i = 0; i < n; ++i) b[i] = std::sin(0.37 * i) + 0.1;
-  return b;
-}
+Eigen::VectorXd rhs(Eigen::Index n) { return verification::smooth_rhs(n); }
 
 TEST(AdditiveSchwarz, SingleBlockIsTheInverseOfAnSpdMatrix) {
   const OneTet tet;

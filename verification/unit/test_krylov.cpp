@@ -2,6 +2,7 @@
 // combination agrees with CHOLMOD on an SPD system; on an indefinite one CG
 // reports the breakdown while CR, MINRES and GMRES converge; preconditioners are SPD.
 #include "assembly/assembler.hpp"
+#include "elastic_test_systems.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "problem/static_elasticity.hpp"
@@ -16,20 +17,12 @@
 namespace hofem {
 namespace {
 
-// A P2 tetrahedral bar clamped at x = 0, ~600 unknowns: its mesh and DOF map
-// (for the mesh-aware preconditioners) and its SPD stiffness matrix.
-struct BarSystem {
-  Mesh mesh = box_mesh(BoxSpec{{0, 0, 0}, {2, 1, 1}, {4, 2, 2}}, CellType::Tetrahedron, 2);
-  DofMap dofs{mesh.num_nodes(), mesh.node_set("xmin")};
-  SparseMatrix K;
-  BarSystem() {
-    const Assembler a(mesh, dofs);
-    const auto mat = make_material("linear", LameParameters::from_young_poisson(1.0, 0.3));
-    Eigen::VectorXd g;
-    K = a.new_matrix();
-    a.hessian(*mat, Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), 3 * mesh.num_nodes()), g, K, false);
-  }
-  Discretization discretization() const { return {&mesh, &dofs}; }
+using verification::ClampedElasticBody;
+using verification::dense_inverse;
+
+// A P2 tetrahedral bar clamped at x = 0, ~600 unknowns.
+struct BarSystem : ClampedElasticBody {
+  BarSystem() : ClampedElasticBody(box_mesh(BoxSpec{{0, 0, 0}, {2, 1, 1}, {4, 2, 2}}, CellType::Tetrahedron, 2)) {}
 };
 
 const BarSystem& bar() {
@@ -48,11 +41,7 @@ std::vector<std::string> serial_preconditioners() {
   return names;
 }
 
-Eigen::VectorXd rhs(Eigen::Index n) {
-  Eigen::VectorXd b(n);
-  for (Eigen::Index i = 0; i < n; ++i) b[i] = std::sin(0.37 * i) + 0.1;
-  return b;
-}
+Eigen::VectorXd rhs(Eigen::Index n) { return verification::smooth_rhs(n); }
 
 // Relative residual 1e-10 bounds the relative error by cond(K) * 1e-10; cond(K)
 // of this small clamped bar is ~1e3-1e4 (P2, 600 unknowns), so 1e-5 is safe and
@@ -138,14 +127,7 @@ TEST(Preconditioners, AreSymmetricPositiveDefiniteOnSpdMatrices) {
     const auto M = make_preconditioner(name);
     M->set_discretization(bar().discretization());
     ASSERT_TRUE(M->setup(K)) << name << ": " << M->last_error();
-    Eigen::MatrixXd Minv(K.rows(), K.rows());
-    Eigen::VectorXd e = Eigen::VectorXd::Zero(K.rows()), z;
-    for (Eigen::Index i = 0; i < K.rows(); ++i) {
-      e[i] = 1.0;
-      M->apply(e, z);
-      Minv.col(i) = z;
-      e[i] = 0.0;
-    }
+    const Eigen::MatrixXd Minv = dense_inverse(*M, K.rows());
     EXPECT_LE((Minv - Minv.transpose()).cwiseAbs().maxCoeff(), 1e-12 * Minv.cwiseAbs().maxCoeff()) << name;
     const Eigen::MatrixXd S = 0.5 * (Minv + Minv.transpose());
     EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S, Eigen::EigenvaluesOnly).eigenvalues().minCoeff(), 0.0) << name;
@@ -216,22 +198,12 @@ TEST(DirectSolvers, AnalyseAgainWhenThePatternChanges) {
 // manufactured-solution cube gives the same discrete solution as with CHOLMOD.
 TEST(Krylov, DrivesTheStaticSolverThroughTheLinearSolverInterface) {
   const Mesh m = box_mesh(unit_cube(3), CellType::Tetrahedron, 2);
-  const auto mat = make_material("neohookean", LameParameters::from_young_poisson(1.0, 0.3));
-  VectorField pull = [](const Eigen::Vector3d& X) { return Eigen::Vector3d(0.1 * X[0], 0.05 * X[1] * X[0], 0.0); };
-  Eigen::VectorXd u[2];
-  const char* solvers[2] = {"cholmod", "minres+block-jacobi"};
-  for (int k = 0; k < 2; ++k) {
-    StaticOptions opt;
-    opt.linear_solver = solvers[k];
-    opt.newton.rtol = 1e-10;
-    StaticElasticity p(m, *mat, {{m.node_set("xmin"), nullptr}, {m.node_set("xmax"), pull}}, nullptr, opt);
-    const StaticReport r = p.solve();
-    ASSERT_TRUE(r.converged) << solvers[k] << ": " << r.message;
-    u[k] = p.displacement();
-  }
+  const auto ref = verification::solve_pulled_neohookean(m, "cholmod");
+  const auto it = verification::solve_pulled_neohookean(m, "minres+block-jacobi");
+  ASSERT_TRUE(ref.converged && it.converged) << ref.message << " / " << it.message;
   // Both Newton solves stop at |g| <= 1e-10 of the load; the solutions then agree
   // to ~cond(K) * 1e-10 relative (cond ~1e3 for this mesh).
-  EXPECT_LE((u[0] - u[1]).norm() / u[0].norm(), 1e-6);
+  EXPECT_LE((ref.displacement - it.displacement).norm() / ref.displacement.norm(), 1e-6);
 }
 
 }  // namespace

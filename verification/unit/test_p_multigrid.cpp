@@ -2,6 +2,7 @@
 // the prolongation reproduces the order-1 space exactly, the V-cycle is SPD, and
 // CG with it converges in a number of iterations that barely grows with the mesh.
 #include "assembly/assembler.hpp"
+#include "elastic_test_systems.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "problem/static_elasticity.hpp"
@@ -49,11 +50,7 @@ struct Element {
 const Element kTet10{CellType::Tetrahedron, 2, "Tet10"}, kTet20{CellType::Tetrahedron, 3, "Tet20"},
     kTet35{CellType::Tetrahedron, 4, "Tet35"}, kHex20{CellType::Hexahedron, 2, "Hex20"};
 
-Eigen::VectorXd rhs(Eigen::Index n) {
-  Eigen::VectorXd b(n);
-  for (Eigen::Index i = 0; i < n; ++i) b[i] = std::sin(0.37 * i) + 0.1;
-  return b;
-}
+Eigen::VectorXd rhs(Eigen::Index n) { return verification::smooth_rhs(n); }
 
 // Interpolant of u on the free DOFs of a space: value of u's component c at the
 // node of each listed global DOF.
@@ -113,15 +110,7 @@ TEST(PMultigrid, VCycleIsSymmetricPositiveDefinite) {
       PMultigridPreconditioner M(opt);
       M.set_discretization(s.discretization());
       ASSERT_TRUE(M.setup(s.K)) << el.name << ": " << M.last_error();
-      const Eigen::Index n = s.K.rows();
-      Eigen::MatrixXd Minv(n, n);
-      Eigen::VectorXd e = Eigen::VectorXd::Zero(n), z;
-      for (Eigen::Index i = 0; i < n; ++i) {
-        e[i] = 1.0;
-        M.apply(e, z);
-        Minv.col(i) = z;
-        e[i] = 0.0;
-      }
+      const Eigen::MatrixXd Minv = verification::dense_inverse(M, s.K.rows());
       const char* sm = smoother == PMultigridOptions::Smoother::Chebyshev ? " chebyshev" : " sgs";
       EXPECT_LE((Minv - Minv.transpose()).cwiseAbs().maxCoeff(), 1e-12 * Minv.cwiseAbs().maxCoeff()) << el.name << sm;
       const Eigen::MatrixXd S = 0.5 * (Minv + Minv.transpose());
@@ -218,20 +207,10 @@ TEST(PMultigrid, CoarseAnalysisIsReusedAcrossSetups) {
 TEST(PMultigrid, DrivesNewtonOnANonlinearMaterial) {
   for (const Element& el : {kTet10, kHex20}) {
     const Mesh m = box_mesh(unit_cube(3), el.cell, el.order);
-    const auto mat = make_material("neohookean", LameParameters::from_young_poisson(1.0, 0.3));
-    VectorField pull = [](const Eigen::Vector3d& X) { return Eigen::Vector3d(0.1 * X[0], 0.05 * X[1] * X[0], 0.0); };
-    Eigen::VectorXd u[2];
-    const char* solvers[2] = {"cholmod", "cg+pmg"};
-    for (int k = 0; k < 2; ++k) {
-      StaticOptions opt;
-      opt.linear_solver = solvers[k];
-      opt.newton.rtol = 1e-10;
-      StaticElasticity p(m, *mat, {{m.node_set("xmin"), nullptr}, {m.node_set("xmax"), pull}}, nullptr, opt);
-      const StaticReport r = p.solve();
-      ASSERT_TRUE(r.converged) << el.name << " " << solvers[k] << ": " << r.message;
-      u[k] = p.displacement();
-    }
-    EXPECT_LE((u[0] - u[1]).norm() / u[0].norm(), 1e-6) << el.name;
+    const auto ref = verification::solve_pulled_neohookean(m, "cholmod");
+    const auto pmg = verification::solve_pulled_neohookean(m, "cg+pmg");
+    ASSERT_TRUE(ref.converged && pmg.converged) << el.name << ": " << ref.message << " / " << pmg.message;
+    EXPECT_LE((ref.displacement - pmg.displacement).norm() / ref.displacement.norm(), 1e-6) << el.name;
   }
 }
 
