@@ -56,6 +56,17 @@ bool CholmodSolver::factorize(const SparseMatrix& A) {
   ++factorizations_;
   if (common_.status == CHOLMOD_NOT_POSDEF) return false;
   if (common_.status < 0) throw std::runtime_error(fmt::format("CHOLMOD factorize failed (status {})", common_.status));
+  // For small or very sparse matrices CHOLMOD chooses a simplicial LDL^T, which
+  // completes on indefinite matrices (negative entries in D) without reporting
+  // CHOLMOD_NOT_POSDEF; Newton then took an ascent direction on an inverted
+  // Stable Neo-Hookean state. Positive definite means every D(j,j) > 0; in the
+  // simplicial LDL^T storage D(j,j) is the first entry of column j.
+  if (!factor_->is_super && !factor_->is_ll) {
+    const auto* Lp = static_cast<const SuiteSparse_long*>(factor_->p);
+    const auto* Lx = static_cast<const double*>(factor_->x);
+    for (size_t j = 0; j < factor_->n; ++j)
+      if (!(Lx[Lp[j]] > 0.0)) return false;
+  }
   return true;
 }
 

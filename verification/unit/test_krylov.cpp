@@ -167,6 +167,21 @@ TEST(DirectSolvers, UmfpackAndEigenLdltAgreeWithCholmod) {
   EXPECT_LE((b - A * x).norm() / b.norm(), 1e-10);  // backward stable LU
 }
 
+// CHOLMOD factors small matrices by a simplicial LDL^T, which completes on
+// indefinite matrices; factorize() must still report them as not positive
+// definite (Newton relies on it to project the Hessian).
+TEST(DirectSolvers, CholmodRefusesSmallIndefiniteMatrices) {
+  std::vector<Eigen::Triplet<double, std::int64_t>> t;
+  for (int i = 0; i < 6; ++i) t.emplace_back(i, i, i == 3 ? -1.0 : 2.0);
+  for (int i = 0; i + 1 < 6; ++i) t.emplace_back(i, i + 1, 0.5), t.emplace_back(i + 1, i, 0.5);
+  SparseMatrix A(6, 6);
+  A.setFromTriplets(t.begin(), t.end());
+  auto chol = make_linear_solver("cholmod");
+  EXPECT_FALSE(chol->factorize(A));
+  A.coeffRef(3, 3) = 2.0;  // now diagonally dominant: SPD
+  EXPECT_TRUE(chol->factorize(A));
+}
+
 // A matrix of the same size with a new pattern (two far-apart DOFs coupled, as a
 // contact or a changed constraint would do) makes every direct solver analyse
 // again instead of factorising against a stale ordering and structure.
