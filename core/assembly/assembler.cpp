@@ -182,6 +182,19 @@ Eigen::VectorXd Assembler::body_force_vector(const std::function<Eigen::Vector3d
   return b;
 }
 
+// Element mass matrix int rho N_i N_j over element e (scalar; the same for each
+// component), with a rule of the given degree.
+template <int N>
+void element_mass(const QuadratureRule& rule, const BasisTabulation& tab, double density, ElementWorkspace<N>& ws,
+                  Eigen::Matrix<double, N, N>& Me) {
+  const int nn = ws.nodes();
+  Me.setZero(nn, nn);
+  for (int q = 0; q < rule.size(); ++q) {
+    const double wq = density * reference_gradients(tab, rule.weights, q, ws);
+    Me.noalias() += wq * tab.values.col(q).head(nn) * tab.values.col(q).head(nn).transpose();
+  }
+}
+
 SparseMatrix Assembler::mass_matrix(double density, int degree) const {
   const QuadratureRule& rule = quadrature_rule(mesh_.cell, degree);
   const BasisTabulation& tab = cached_tabulation(mesh_.cell, mesh_.order, degree);
@@ -194,12 +207,8 @@ SparseMatrix Assembler::mass_matrix(double density, int degree) const {
       gather(mesh_, mesh_.nodes.data(), e, ws);
       const int nn = ws.nodes();
       // Built once per simulation, so the dynamic-size case may allocate here.
-      Eigen::Matrix<double, N, N> Me(nn, nn);
-      Me.setZero();
-      for (int q = 0; q < rule.size(); ++q) {
-        const double wq = density * reference_gradients(tab, rule.weights, q, ws);
-        Me.noalias() += wq * tab.values.col(q).head(nn) * tab.values.col(q).head(nn).transpose();
-      }
+      Eigen::Matrix<double, N, N> Me;
+      element_mass(rule, tab, density, ws, Me);
       const int* map = pattern_->element_map(e);
       for (int i = 0; i < nn; ++i)
         for (int j = 0; j < nn; ++j)
@@ -208,6 +217,53 @@ SparseMatrix Assembler::mass_matrix(double density, int degree) const {
     });
   });
   return M;
+}
+
+Eigen::VectorXd Assembler::lumped_mass(double density, int degree, MassLumping lumping) const {
+  const QuadratureRule& rule = quadrature_rule(mesh_.cell, degree);
+  const BasisTabulation& tab = cached_tabulation(mesh_.cell, mesh_.order, degree);
+  Eigen::VectorXd m = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, mesh_.nodes.data(), e, ws);
+      const int nn = ws.nodes();
+      Eigen::Matrix<double, N, N> Me;
+      element_mass(rule, tab, density, ws, Me);
+      Eigen::Matrix<double, N, 1> me(nn);
+      if (lumping == MassLumping::RowSum) {
+        me = Me.rowwise().sum();
+      } else {
+        // Hinton, Rock & Zienkiewicz (1976): the consistent diagonal scaled to
+        // the element's mass. Positive for every order, where row sums are not
+        // (Tet10 vertices get -m_e/20, Hex20 corners -m_e/12).
+        me = Me.diagonal() * (Me.sum() / Me.trace());
+      }
+      // Colours make the nodes of concurrently processed elements disjoint.
+      for (int i = 0; i < nn; ++i) m.segment<3>(3 * mesh_.elements(i, e)).array() += me[i];
+    });
+  });
+  return m;
+}
+
+Eigen::VectorXd Assembler::mass_action(double density, int degree, const Eigen::VectorXd& r) const {
+  check_size(r, mesh_);
+  const QuadratureRule& rule = quadrature_rule(mesh_.cell, degree);
+  const BasisTabulation& tab = cached_tabulation(mesh_.cell, mesh_.order, degree);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, mesh_.nodes.data(), e, ws);
+      const int nn = ws.nodes();
+      Eigen::Matrix<double, N, N> Me;
+      element_mass(rule, tab, density, ws, Me);
+      for (int i = 0; i < nn; ++i)
+        for (int j = 0; j < nn; ++j)
+          y.segment<3>(3 * mesh_.elements(i, e)) += Me(i, j) * r.segment<3>(3 * mesh_.elements(j, e));
+    });
+  });
+  return y;
 }
 
 }  // namespace hofem

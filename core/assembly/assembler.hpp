@@ -30,6 +30,12 @@ namespace hofem {
 /// we keep a full rule). Hex: 2p (p + 1 Gauss points per direction).
 int default_quadrature_degree(CellType cell, int order, bool linear_material);
 
+/// How a diagonal (lumped) mass is made from the consistent element mass:
+/// row sums (order 1, where they are positive) or HRZ (Hinton, Rock &
+/// Zienkiewicz 1976: the consistent diagonal scaled to keep each element's mass;
+/// positive for every order).
+enum class MassLumping { RowSum, HRZ };
+
 class Assembler {
  public:
   /// quadrature_degree < 0: default_quadrature_degree(cell, order, false).
@@ -58,6 +64,11 @@ class Assembler {
   /// Consistent mass matrix int rho N_i N_j (identity in the components) over the
   /// free DOFs, rule of degree >= 2p for any order.
   SparseMatrix mass_matrix(double density, int degree) const;
+  /// Lumped mass per DOF (all 3 * num_nodes DOFs; the three of a node equal).
+  Eigen::VectorXd lumped_mass(double density, int degree, MassLumping lumping) const;
+  /// M r for the consistent mass over all DOFs, element by element (no matrix):
+  /// the coupling of free DOFs to prescribed accelerations.
+  Eigen::VectorXd mass_action(double density, int degree, const Eigen::VectorXd& r) const;
 
  private:
   const Mesh& mesh_;
