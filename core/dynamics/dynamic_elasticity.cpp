@@ -1,0 +1,295 @@
+#include "dynamics/dynamic_elasticity.hpp"
+
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+namespace hofem {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::vector<int> constrained_nodes(const std::vector<PrescribedMotion>& motions, int num_nodes) {
+  std::set<int> seen;
+  for (size_t k = 0; k < motions.size(); ++k)
+    for (int n : motions[k].nodes) {
+      if (n < 0 || n >= num_nodes)
+        throw std::invalid_argument(
+            fmt::format("prescribed motion {}: node {} is out of range (the mesh has {} nodes)", k, n, num_nodes));
+      if (!seen.insert(n).second)
+        throw std::invalid_argument(fmt::format("prescribed motion {}: node {} already has a prescribed motion", k, n));
+    }
+  return {seen.begin(), seen.end()};
+}
+
+bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
+
+}  // namespace
+
+DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material, std::vector<PrescribedMotion> motions,
+                                     DynamicsOptions options)
+    : mesh_(mesh),
+      material_(material),
+      motions_(std::move(motions)),
+      options_(std::move(options)),
+      dofs_(mesh.num_nodes(), constrained_nodes(motions_, mesh.num_nodes())) {
+  const DynamicsOptions& o = options_;
+  if (!(o.dt > 0.0) || !std::isfinite(o.dt)) throw std::invalid_argument(fmt::format("dynamics: dt must be > 0 (got {})", o.dt));
+  if (!(o.density > 0.0) || !std::isfinite(o.density))
+    throw std::invalid_argument(fmt::format("dynamics: density must be > 0 (got {})", o.density));
+  if (!(o.rayleigh_alpha >= 0.0) || !(o.rayleigh_beta >= 0.0))
+    throw std::invalid_argument("dynamics: Rayleigh damping coefficients must be >= 0");
+  if (!o.gravity.allFinite()) throw std::invalid_argument("dynamics: gravity must be finite");
+  if (o.floor) {
+    if (!(o.floor->stiffness > 0.0) || !std::isfinite(o.floor->stiffness))
+      throw std::invalid_argument(fmt::format("dynamics: floor stiffness must be > 0 (got {})", o.floor->stiffness));
+    if (!(o.floor->normal.norm() > 0.0)) throw std::invalid_argument("dynamics: floor normal must be non-zero");
+    options_.floor->normal.normalize();
+  }
+  const bool explicit_scheme = is_explicit(o.integrator);
+  mass_kind_ = o.mass.value_or(explicit_scheme ? MassKind::Lumped : MassKind::Consistent);
+  lumping_ = o.lumping.value_or(mesh.order == 1 ? MassLumping::RowSum : MassLumping::HRZ);
+  // Consistent mass: N_i N_j has degree 2p on affine cells (2p per direction on hexes).
+  mass_degree_ = 2 * mesh.order;
+  assembler_ = std::make_unique<Assembler>(mesh_, dofs_, o.quadrature_degree);
+  stats_.polar_decompositions = material.needs_polar_decomposition();
+  if (mass_kind_ == MassKind::Lumped) {
+    lumped_ = assembler_->lumped_mass(o.density, mass_degree_, lumping_);
+    stats_.mass = lumping_ == MassLumping::RowSum ? "lumped (row-sum)" : "lumped (HRZ)";
+    if (lumped_.minCoeff() <= 0.0)
+      throw std::invalid_argument(fmt::format(
+          "dynamics: {} lumping gives a non-positive nodal mass ({:.3e}) for order {}; use HRZ lumping or the "
+          "consistent mass",
+          lumping_ == MassLumping::RowSum ? "row-sum" : "HRZ", lumped_.minCoeff(), mesh.order));
+  } else {
+    stats_.mass = "consistent";
+    ensure_consistent_mass();
+    if (explicit_scheme) {
+      mass_solver_ = make_linear_solver("cholmod");
+      if (!mass_solver_->factorize(M_)) throw std::runtime_error("dynamics: the consistent mass is not positive definite");
+      ++stats_.mass_factorizations;
+    }
+  }
+  f_gravity_ = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+  if (o.gravity.squaredNorm() > 0.0) {
+    const Eigen::Vector3d rho_g = o.density * o.gravity;
+    f_gravity_ = assembler_->body_force_vector([&](const Eigen::Vector3d&) { return rho_g; }, mass_degree_);
+  }
+  const double extent = (mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff()).norm();
+  elastic_force_scale_ = (2.0 * material.lame().mu + material.lame().lambda) * extent * extent;
+  x_ = Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), 3 * mesh.num_nodes());
+  v_ = Eigen::VectorXd::Zero(x_.size());
+  for (const PrescribedMotion& m : motions_) moving_boundary_ = moving_boundary_ || m.moves();
+  impose_motion(0.0, x_, &v_);
+}
+
+DynamicElasticity::~DynamicElasticity() = default;
+
+void DynamicElasticity::ensure_consistent_mass() {
+  if (M_.size() > 0) return;
+  M_ = assembler_->mass_matrix(options_.density, mass_degree_);
+  ++stats_.mass_matrices_built;
+}
+
+void DynamicElasticity::ensure_linear_solver() {
+  if (solver_) return;
+  solver_ = make_linear_solver(options_.linear_solver);
+  solver_->set_discretization({&mesh_, &dofs_});
+  K_ = assembler_->new_matrix();
+}
+
+void DynamicElasticity::set_velocity(const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& v) {
+  for (int i = 0; i < mesh_.num_nodes(); ++i) v_.segment<3>(3 * i) = v(mesh_.nodes.col(i));
+  impose_motion(t_, x_, &v_);
+  a_valid_ = false;
+  energy_reference_ = -1.0;
+}
+
+void DynamicElasticity::set_velocities(const Eigen::VectorXd& v) {
+  if (v.size() != v_.size() || !v.allFinite())
+    throw std::invalid_argument(fmt::format("dynamics: velocities need {} finite entries", v_.size()));
+  v_ = v;
+  impose_motion(t_, x_, &v_);
+  a_valid_ = false;
+  energy_reference_ = -1.0;
+}
+
+void DynamicElasticity::set_positions(const Eigen::VectorXd& x) {
+  if (x.size() != x_.size() || !x.allFinite())
+    throw std::invalid_argument(fmt::format("dynamics: positions need {} finite entries", x_.size()));
+  x_ = x;
+  impose_motion(t_, x_, &v_);
+  a_valid_ = false;
+  energy_reference_ = -1.0;
+}
+
+void DynamicElasticity::impose_motion(double t, Eigen::VectorXd& x, Eigen::VectorXd* v) const {
+  for (const PrescribedMotion& m : motions_)
+    for (int n : m.nodes) {
+      const Eigen::Vector3d X = mesh_.nodes.col(n);
+      x.segment<3>(3 * n) = m.position ? m.position(X, t) : X;
+      if (v) v->segment<3>(3 * n) = m.velocity ? m.velocity(X, t) : Eigen::Vector3d::Zero();
+    }
+}
+
+Eigen::VectorXd DynamicElasticity::displacement() const {
+  return x_ - Eigen::Map<const Eigen::VectorXd>(mesh_.nodes.data(), 3 * mesh_.num_nodes());
+}
+
+Eigen::VectorXd DynamicElasticity::mass_times(const Eigen::VectorXd& r) {
+  if (mass_kind_ == MassKind::Lumped) return lumped_.cwiseProduct(r);
+  return assembler_->mass_action(options_.density, mass_degree_, r);
+}
+
+Energies DynamicElasticity::energies() {
+  Energies e;
+  e.kinetic = 0.5 * v_.dot(mass_times(v_));
+  const auto t0 = Clock::now();
+  e.elastic = assembler_->energy(material_, x_);
+  stats_.assembly_seconds += since(t0);
+  ++stats_.energy_evaluations;
+  e.gravity = -f_gravity_.dot(displacement());
+  if (options_.floor) e.floor = options_.floor->energy(x_);
+  return e;
+}
+
+Eigen::Vector3d DynamicElasticity::linear_momentum() const {
+  const Eigen::VectorXd p = const_cast<DynamicElasticity*>(this)->mass_times(v_);
+  Eigen::Vector3d P = Eigen::Vector3d::Zero();
+  for (int i = 0; i < mesh_.num_nodes(); ++i) P += p.segment<3>(3 * i);
+  return P;
+}
+
+Eigen::Vector3d DynamicElasticity::angular_momentum() const {
+  const Eigen::VectorXd p = const_cast<DynamicElasticity*>(this)->mass_times(v_);
+  Eigen::Vector3d L = Eigen::Vector3d::Zero();
+  for (int i = 0; i < mesh_.num_nodes(); ++i) L += x_.segment<3>(3 * i).cross(p.segment<3>(3 * i));
+  return L;
+}
+
+double DynamicElasticity::kinetic_energy() {
+  return 0.5 * v_.dot(mass_times(v_));
+}
+
+double DynamicElasticity::estimate_stable_dt(int iterations) {
+  const double limit = stability_limit(options_.integrator);
+  if (std::isinf(limit)) return std::numeric_limits<double>::infinity();
+  // Power iteration on M^-1 K over the free DOFs (prescribed entries zero).
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(x_.size());
+  for (int i : dofs_.free_dofs()) w[i] = std::sin(0.37 * i) + 0.1;
+  double lambda = 0.0;
+  for (int k = 0; k < iterations; ++k) {
+    w /= w.norm();
+    Eigen::VectorXd Kw = stiffness_times(x_, w);
+    for (int i : dofs_.constrained_dofs()) Kw[i] = 0.0;
+    Eigen::VectorXd z;
+    if (mass_kind_ == MassKind::Lumped) {
+      z = Kw.cwiseQuotient(lumped_);
+    } else {  // explicit integrators with the consistent mass have its factor
+      Eigen::VectorXd zf;
+      mass_solver_->solve(dofs_.restrict(Kw), zf);
+      z = Eigen::VectorXd::Zero(x_.size());
+      dofs_.add_free(zf, z);
+    }
+    lambda = w.dot(z) > 0.0 ? z.norm() : lambda;
+    w = z;
+  }
+  const double omega = std::sqrt(std::max(lambda, 0.0));
+  return omega > 0.0 ? limit / omega : std::numeric_limits<double>::infinity();
+}
+
+StepReport DynamicElasticity::step() {
+  const auto t0 = Clock::now();
+  StepReport report;
+  const Eigen::VectorXd x_old = x_, v_old = v_;
+  const double t_old = t_;
+  const bool explicit_scheme = is_explicit(options_.integrator);
+  if (explicit_scheme && energy_reference_ < 0.0) {
+    // Scale of energies a stable run can reach: the initial kinetic and elastic
+    // energy, the work gravity can do over the body's extent (and its height
+    // above a floor), and the kinetic energy of the boundary's motion.
+    const Eigen::Map<const Eigen::VectorXd> X(mesh_.nodes.data(), x_.size());
+    const Eigen::Vector3d lo = mesh_.nodes.rowwise().minCoeff(), hi = mesh_.nodes.rowwise().maxCoeff();
+    double extent = (hi - lo).norm() + (x_ - X).cwiseAbs().maxCoeff();
+    if (options_.floor) extent += std::abs(options_.floor->depth(lo));
+    const double gravity_work = f_gravity_.cwiseAbs().sum() * extent;
+    const double elastic = assembler_->energy(material_, x_);
+    ++stats_.energy_evaluations;
+    double boundary = 0.0;
+    Eigen::VectorXd vb = Eigen::VectorXd::Zero(x_.size());
+    for (int i : dofs_.constrained_dofs()) vb[i] = v_[i];
+    boundary = 0.5 * vb.dot(mass_times(vb));
+    energy_reference_ = std::max({kinetic_energy() + elastic, gravity_work, boundary,
+                                  std::numeric_limits<double>::min()});
+  }
+  try {
+    switch (options_.integrator) {
+      case Integrator::ExplicitEuler: step_explicit_euler(); break;
+      case Integrator::SymplecticEuler: step_symplectic_euler(); break;
+      case Integrator::Leapfrog: step_leapfrog(); break;
+      case Integrator::RK4: step_rk4(); break;
+      case Integrator::SemiImplicit: step_semi_implicit(report); break;
+      case Integrator::ImplicitEuler: step_implicit_euler(report); break;
+    }
+  } catch (const MaterialDomainError& e) {
+    report.ok = false;
+    report.message = fmt::format("t = {:.6g}: {} (an element inverted{})", t_old + options_.dt, e.what(),
+                                 explicit_scheme ? "; the explicit step may be unstable at this dt" : "");
+  }
+  if (report.ok) {
+    t_ = t_old + options_.dt;
+    if (!all_finite(x_) || !all_finite(v_)) {
+      report.ok = false;
+      report.message = fmt::format("t = {:.6g}: non-finite positions or velocities", t_);
+    } else if (explicit_scheme) {
+      const double kinetic = kinetic_energy();
+      if (kinetic > options_.instability_factor * energy_reference_) {
+        report.ok = false;
+        report.message = fmt::format("t = {:.6g}: kinetic energy {:.3e} > {:.0e} x the run's energy scale {:.3e}",
+                                     t_, kinetic, options_.instability_factor, energy_reference_);
+      }
+    }
+  }
+  if (!report.ok) {
+    x_ = x_old;
+    v_ = v_old;
+    t_ = t_old;
+    a_valid_ = false;
+    if (explicit_scheme) {
+      double stable = std::numeric_limits<double>::quiet_NaN();
+      try {
+        stable = estimate_stable_dt();
+      } catch (const MaterialDomainError&) {
+        // The last good state is too close to inversion for the difference
+        // quotients; the message then says so through the NaN.
+      }
+      const std::string bound = std::isnan(stable) ? std::string("a smaller dt (the last state is too close to "
+                                                                 "inversion to estimate omega_max)")
+                                                   : fmt::format("dt < {:.3e} here", stable);
+      report.message += fmt::format(": unstable; {} at dt = {:.3e} needs {} (omega_max from power "
+                                    "iteration on M^-1 K{})",
+                                    integrator_name(options_.integrator), options_.dt, bound,
+                                    options_.integrator == Integrator::ExplicitEuler
+                                        ? "; explicit Euler is unstable at any dt without damping"
+                                        : "");
+    }
+  }
+  if (options_.floor && report.ok) {
+    for (int i = 0; i < mesh_.num_nodes(); ++i) stats_.contact_node_steps += options_.floor->depth(x_.segment<3>(3 * i)) > 0.0;
+    stats_.max_penetration = std::max(stats_.max_penetration, options_.floor->max_depth(x_));
+  }
+  report.time = t_;
+  report.seconds = since(t0);
+  return report;
+}
+
+}  // namespace hofem

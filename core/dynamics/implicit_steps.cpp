@@ -1,0 +1,255 @@
+// The implicit integrators of DynamicElasticity: backward Euler as the
+// minimisation of the incremental potential (thesis eq. 2.25), and the
+// semi-implicit Baraff-Witkin step (one Newton iteration of it, linearised).
+#include "dynamics/dynamic_elasticity.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace hofem {
+
+namespace {
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// values(A) += s values(B) for matrices of one pattern.
+void add_scaled(SparseMatrix& A, double s, const SparseMatrix& B) {
+  Eigen::Map<Eigen::VectorXd>(A.valuePtr(), A.nonZeros()) += s * Eigen::Map<const Eigen::VectorXd>(B.valuePtr(), B.nonZeros());
+}
+}  // namespace
+
+// Over the increment z = y - y_n of the free positions (prescribed DOFs already
+// at t + h):
+//   E(z) = 1/(2h^2) |z - h v_n|_M^2 + Psi(x) - f_g . z + floor(x)
+//          + 1/(2h) |z|_D^2 + c . z / h^2,      x = x_n + z on the free DOFs,
+// D = alpha M + beta K(x_n) (frozen over the step, so that
+// Rayleigh damping is a potential), and c = (M_fp r_p) with r_p the prescribed
+// DOFs' deviation from their inertial path (consistent mass only: the coupling
+// of free DOFs to the boundary's acceleration). Its minimiser is the backward
+// Euler step: M (z - h v_n)/h^2 = f(x) - D z / h. The unknown is the increment,
+// not the position, so that the inertial term's rounding is eps |z| M / h^2
+// rather than eps |x| M / h^2 (positions are O(1), increments O(h |v|)); with
+// positions Newton stalled at |g| ~ 1e-11 on slowly moving bodies.
+class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
+ public:
+  IncrementalPotential(DynamicElasticity& sim, Eigen::VectorXd x_new, const Eigen::VectorXd& y_n,
+                       const Eigen::VectorXd& z_tilde, Eigen::VectorXd coupling, const SparseMatrix* K_n)
+      : s_(sim), x_(std::move(x_new)), y_n_(y_n), z_tilde_(z_tilde), c_(std::move(coupling)), K_n_(K_n) {
+    const double h = s_.options_.dt;
+    inertia_ = 1.0 / (h * h) + s_.options_.rayleigh_alpha / h;
+  }
+  int size() const override { return s_.dofs_.num_free(); }
+
+  double energy(const Eigen::VectorXd& y) override {
+    set(y);
+    const auto t0 = std::chrono::steady_clock::now();
+    const double psi = s_.assembler_->energy(s_.material_, x_);
+    s_.stats_.assembly_seconds += since(t0);
+    ++s_.stats_.energy_evaluations;
+    if (!std::isfinite(psi)) return std::numeric_limits<double>::infinity();
+    return psi + quadratic(y) + floor_energy();
+  }
+  double gradient(const Eigen::VectorXd& y, Eigen::VectorXd& g) override {
+    set(y);
+    const auto t0 = std::chrono::steady_clock::now();
+    Eigen::VectorXd g_all;
+    const double psi = s_.assembler_->gradient(s_.material_, x_, g_all);
+    s_.stats_.assembly_seconds += since(t0);
+    ++s_.stats_.gradient_evaluations;
+    g = s_.dofs_.restrict(g_all - s_.f_gravity_ - floor_forces()) + quadratic_gradient(y);
+    return psi + quadratic(y) + floor_energy();
+  }
+  void hessian(const Eigen::VectorXd& y, Eigen::VectorXd& g, SparseMatrix& K, bool project) override {
+    set(y);
+    const auto t0 = std::chrono::steady_clock::now();
+    Eigen::VectorXd g_all;
+    s_.assembler_->hessian(s_.material_, x_, g_all, K, project);
+    s_.stats_.assembly_seconds += since(t0);
+    ++s_.stats_.hessian_assemblies;
+    g = s_.dofs_.restrict(g_all - s_.f_gravity_ - floor_forces()) + quadratic_gradient(y);
+    if (s_.options_.floor) s_.options_.floor->add_hessian(x_, s_.dofs_, K);
+    if (s_.mass_kind_ == MassKind::Consistent) {
+      add_scaled(K, inertia_, s_.M_);
+    } else {
+      const Eigen::VectorXd m = s_.dofs_.restrict(s_.lumped_);
+      for (Eigen::Index i = 0; i < m.size(); ++i) K.coeffRef(i, i) += inertia_ * m[i];
+    }
+    if (K_n_) add_scaled(K, s_.options_.rayleigh_beta / s_.options_.dt, *K_n_);
+  }
+  // Representative force: gravity, the inertial force M v_n / h, the first
+  // residual, or the elastic force of a unit strain over the body ((2 mu +
+  // lambda) L^2, so that rtol reads as a strain), whichever is largest (the
+  // second seed stops at 1e-5 M a_rep with gravity). The elastic term keeps the
+  // tolerance above the rounding of internal forces computed from positions
+  // (~eps (2 mu + lambda) |x| h_e per node) when the body comes to rest.
+  double force_scale(const Eigen::VectorXd& g0) const override {
+    const double h = s_.options_.dt;
+    const double inertial = mass_free(z_tilde_).norm() / (h * h);
+    return std::max({g0.norm(), s_.dofs_.restrict(s_.f_gravity_).norm(), inertial, s_.elastic_force_scale_});
+  }
+
+ private:
+  void set(const Eigen::VectorXd& z) {
+    for (int k = 0; k < z.size(); ++k) x_[s_.dofs_.free_dofs()[k]] = y_n_[k] + z[k];
+  }
+  Eigen::VectorXd mass_free(const Eigen::VectorXd& w) const {
+    if (s_.mass_kind_ == MassKind::Consistent) return s_.M_ * w;
+    return s_.dofs_.restrict(s_.lumped_).cwiseProduct(w);
+  }
+  double quadratic(const Eigen::VectorXd& y) const {
+    const double h = s_.options_.dt;
+    const Eigen::VectorXd d = y - z_tilde_;
+    double q = 0.5 / (h * h) * d.dot(mass_free(d)) - s_.dofs_.restrict(s_.f_gravity_).dot(y) + c_.dot(y) / (h * h);
+    if (s_.options_.rayleigh_alpha > 0.0) q += 0.5 * s_.options_.rayleigh_alpha / h * y.dot(mass_free(y));
+    if (K_n_) q += 0.5 * s_.options_.rayleigh_beta / h * y.dot(*K_n_ * y);
+    return q;
+  }
+  // Gradient of quadratic() without its gravity term (added with the forces).
+  Eigen::VectorXd quadratic_gradient(const Eigen::VectorXd& y) const {
+    const double h = s_.options_.dt;
+    Eigen::VectorXd g = mass_free(y - z_tilde_) / (h * h) + c_ / (h * h);
+    if (s_.options_.rayleigh_alpha > 0.0) g += s_.options_.rayleigh_alpha / h * mass_free(y);
+    if (K_n_) g += s_.options_.rayleigh_beta / h * (*K_n_ * y);
+    return g;
+  }
+  double floor_energy() const { return s_.options_.floor ? s_.options_.floor->energy(x_) : 0.0; }
+  Eigen::VectorXd floor_forces() const {
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(x_.size());
+    if (s_.options_.floor) s_.options_.floor->add_forces(x_, f);
+    return f;
+  }
+
+  DynamicElasticity& s_;
+  Eigen::VectorXd x_;
+  const Eigen::VectorXd& y_n_;
+  const Eigen::VectorXd& z_tilde_;
+  Eigen::VectorXd c_;
+  const SparseMatrix* K_n_;
+  double inertia_ = 0.0;
+};
+
+void DynamicElasticity::step_implicit_euler(StepReport& report) {
+  ensure_linear_solver();
+  const double h = options_.dt;
+  const Eigen::VectorXd y_n = dofs_.restrict(x_), z_tilde = h * dofs_.restrict(v_);
+  Eigen::VectorXd x_new = x_, v_new = v_;
+  impose_motion(t_ + h, x_new, &v_new);
+  Eigen::VectorXd coupling = Eigen::VectorXd::Zero(y_n.size());
+  if (moving_boundary_ && mass_kind_ == MassKind::Consistent) {
+    Eigen::VectorXd r_p = Eigen::VectorXd::Zero(x_.size());
+    for (int i : dofs_.constrained_dofs()) r_p[i] = x_new[i] - (x_[i] + h * v_[i]);
+    coupling = dofs_.restrict(assembler_->mass_action(options_.density, mass_degree_, r_p));
+  }
+  SparseMatrix K_n;
+  if (options_.rayleigh_beta > 0.0) {  // D's stiffness part, frozen at the step's start
+    K_n = assembler_->new_matrix();
+    Eigen::VectorXd g;
+    assembler_->hessian(material_, x_, g, K_n, true);
+    ++stats_.hessian_assemblies;
+  }
+  IncrementalPotential problem(*this, x_new, y_n, z_tilde, coupling, K_n.size() > 0 ? &K_n : nullptr);
+  // Start from the inertial prediction unless it is outside the material's
+  // domain (an inverted element): then from the last state, which is inside.
+  Eigen::VectorXd z = z_tilde;
+  if (!std::isfinite(problem.energy(z))) z.setZero();
+  const int analyses0 = solver_->analyses(), factorizations0 = solver_->factorizations();
+  const auto t0 = std::chrono::steady_clock::now();
+  const double assembly0 = stats_.assembly_seconds;
+  const NewtonResult r = newton_minimize(problem, z, *solver_, options_.newton);
+  stats_.solve_seconds += since(t0) - (stats_.assembly_seconds - assembly0);
+  stats_.symbolic_analyses += solver_->analyses() - analyses0;
+  stats_.factorizations += solver_->factorizations() - factorizations0;
+  stats_.newton_iterations += r.iterations;
+  stats_.linear_iterations += r.linear_iterations;
+  report.newton_iterations = r.iterations;
+  report.linear_iterations = r.linear_iterations;
+  report.newton_residual = r.final_residual;
+  if (!r.converged) {
+    report.ok = false;
+    report.message = fmt::format("t = {:.6g}: implicit Euler step did not converge: {}", t_ + h, r.message);
+    return;
+  }
+  for (int k = 0; k < z.size(); ++k) {
+    const int i = dofs_.free_dofs()[k];
+    v_new[i] = z[k] / h;
+    x_new[i] = y_n[k] + z[k];
+  }
+  x_ = std::move(x_new);
+  v_ = std::move(v_new);
+}
+
+// Baraff & Witkin (1998) eq. 6 with D = alpha M + beta K:
+//   (M + h D + h^2 K) dv = h (f(x_n) - h K v_n),
+// K and f evaluated with the prescribed DOFs already at t + h, so the boundary's
+// motion enters through the forces. K is PSD-projected per quadrature point so
+// the system stays SPD under compression (as in the thesis' semi-implicit scheme).
+void DynamicElasticity::step_semi_implicit(StepReport& report) {
+  ensure_linear_solver();
+  const double h = options_.dt, alpha = options_.rayleigh_alpha, beta = options_.rayleigh_beta;
+  Eigen::VectorXd x_new = x_, v_new = v_;
+  impose_motion(t_ + h, x_new, &v_new);
+  auto t0 = std::chrono::steady_clock::now();
+  Eigen::VectorXd g;
+  assembler_->hessian(material_, x_new, g, K_, true);
+  ++stats_.hessian_assemblies;
+  Eigen::VectorXd f = f_gravity_ - g;
+  if (options_.floor) {
+    ++stats_.floor_evaluations;
+    options_.floor->add_forces(x_new, f);
+    options_.floor->add_hessian(x_new, dofs_, K_);
+  }
+  stats_.assembly_seconds += since(t0);
+  const Eigen::VectorXd vf = dofs_.restrict(v_);
+  Eigen::VectorXd Mv, Mfree_diag;
+  if (mass_kind_ == MassKind::Consistent) {
+    Mv = M_ * vf;
+    if (moving_boundary_) {
+      Eigen::VectorXd a_p = Eigen::VectorXd::Zero(x_.size());
+      for (const PrescribedMotion& m : motions_)
+        if (m.acceleration)
+          for (int n : m.nodes) a_p.segment<3>(3 * n) = m.acceleration(mesh_.nodes.col(n), t_ + h);
+      f -= assembler_->mass_action(options_.density, mass_degree_, a_p);
+    }
+  } else {
+    Mfree_diag = dofs_.restrict(lumped_);
+    Mv = Mfree_diag.cwiseProduct(vf);
+  }
+  const Eigen::VectorXd Kv = K_ * vf;
+  const Eigen::VectorXd rhs = h * (dofs_.restrict(f) - alpha * Mv - beta * Kv - h * Kv);
+  // A = (1 + h alpha) M + (h beta + h^2) K, in K's storage.
+  Eigen::Map<Eigen::VectorXd>(K_.valuePtr(), K_.nonZeros()) *= h * beta + h * h;
+  if (mass_kind_ == MassKind::Consistent) {
+    add_scaled(K_, 1.0 + h * alpha, M_);
+  } else {
+    for (Eigen::Index i = 0; i < Mfree_diag.size(); ++i) K_.coeffRef(i, i) += (1.0 + h * alpha) * Mfree_diag[i];
+  }
+  t0 = std::chrono::steady_clock::now();
+  const int analyses0 = solver_->analyses(), factorizations0 = solver_->factorizations();
+  const bool ok = solver_->factorize(K_);
+  Eigen::VectorXd dv;
+  if (ok) solver_->solve(rhs, dv);
+  stats_.solve_seconds += since(t0);
+  stats_.symbolic_analyses += solver_->analyses() - analyses0;
+  stats_.factorizations += solver_->factorizations() - factorizations0;
+  stats_.linear_iterations += solver_->last_iterations();
+  report.linear_iterations = solver_->last_iterations();
+  if (!ok) {
+    report.ok = false;
+    report.message = fmt::format("t = {:.6g}: semi-implicit system not positive definite ({})", t_ + h,
+                                 solver_->last_error());
+    return;
+  }
+  for (int k = 0; k < dv.size(); ++k) {
+    const int i = dofs_.free_dofs()[k];
+    v_new[i] = v_[i] + dv[k];
+    x_new[i] = x_[i] + h * v_new[i];
+  }
+  x_ = std::move(x_new);
+  v_ = std::move(v_new);
+}
+
+}  // namespace hofem
