@@ -11,6 +11,9 @@
 #include "mesh/vtu_writer.hpp"
 #include "quadrature/rule_library.hpp"
 
+#include "scene/scene.hpp"
+#include "scene/scene_runner.hpp"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -213,6 +216,26 @@ int run_verify(const VerifyOptions& o) {
   }
   fmt::print("verification: {} checks, {} failed -> {}\n", report.rows().size(), report.failures(), o.out);
   return report.failures() == 0 ? 0 : 1;
+}
+
+int run_scene_file(const RunOptions& o) {
+  Scene scene;
+  try {
+    scene = read_scene(o.scene);
+  } catch (const SceneError& e) {
+    throw UsageError(e.what());
+  }
+  SceneRunOptions options;
+  options.progress = true;
+  options.write_frames = !o.no_frames;
+  SceneRunResult r;
+  try {
+    r = run_scene(scene, o.out, options);
+  } catch (const SceneError& e) {
+    throw UsageError(e.what());
+  }
+  fmt::print("{}: {} ({}) -> {}/stats.json\n", scene.name, r.ok ? "done" : "FAILED", r.message, o.out);
+  return r.ok ? 0 : 1;
 }
 
 }  // namespace hofem::cli

@@ -59,4 +59,13 @@ struct VerifyOptions {
 };
 int run_verify(const VerifyOptions& o);
 
+struct RunOptions {
+  std::string scene;
+  std::string out;
+  bool no_frames = false;
+};
+/// Exit status 0 when every step succeeded, 1 when a step failed (stats.json
+/// still written), 2 for an invalid scene (the message names the file and key).
+int run_scene_file(const RunOptions& o);
+
 }  // namespace hofem::cli

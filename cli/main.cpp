@@ -65,13 +65,19 @@ int main(int argc, char** argv) {
   verify->add_flag("--quiet", vo.quiet, "Print only the summary line");
   verify->add_option("--convergence", vo.convergence, "Manufactured-solution study: none, ci or full")->capture_default_str();
 
+  hofem::cli::RunOptions ro;
+  auto* run = app.add_subcommand("run", "Run a scene file: VTU frames, a .pvd index and stats.json into --out");
+  run->add_option("scene", ro.scene, "Scene file (JSON; scripts/scenes/ has the built-in ones)")->required();
+  run->add_option("--out", ro.out, "Output directory")->required();
+  run->add_flag("--no-frames", ro.no_frames, "Write stats.json only");
+
   // CLI11 reports an unknown first word as "a subcommand is required"; name it instead.
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];
     bool known = false;
     for (const auto* sub : app.get_subcommands({})) known = known || sub->get_name() == first;
     if (!known) {
-      fmt::print(stderr, "hofem: error: unknown subcommand '{}' (valid: quadrature, basis, mesh, mms, verify)\n", first);
+      fmt::print(stderr, "hofem: error: unknown subcommand '{}' (valid: quadrature, basis, mesh, mms, verify, run)\n", first);
       return 2;
     }
   }
@@ -94,6 +100,7 @@ int main(int argc, char** argv) {
     if (*verify) return hofem::cli::run_verify(vo);
     if (*mms) return hofem::cli::run_mms(mo);
     if (*mesh) return hofem::cli::run_mesh(meo);
+    if (*run) return hofem::cli::run_scene_file(ro);
   } catch (const hofem::cli::UsageError& e) {
     fmt::print(stderr, "hofem: error: {}\n", e.what());
     return 2;

@@ -105,8 +105,15 @@ void check_size(const Eigen::VectorXd& x, const Mesh& mesh) {
 }  // namespace
 
 double Assembler::energy(const Material& mat, const Eigen::VectorXd& x) const {
+  const Eigen::VectorXd per_element = element_energies(mat, x);
+  double total = 0.0;  // sequential sum: reproducible whatever the thread count
+  for (double v : per_element) total += v;
+  return total;
+}
+
+Eigen::VectorXd Assembler::element_energies(const Material& mat, const Eigen::VectorXd& x) const {
   check_size(x, mesh_);
-  std::vector<double> per_element(mesh_.num_elements());
+  Eigen::VectorXd per_element(mesh_.num_elements());
   dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
     constexpr int N = decltype(n)::value;
     for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
@@ -114,9 +121,21 @@ double Assembler::energy(const Material& mat, const Eigen::VectorXd& x) const {
       per_element[e] = element_energy(mat, *tab_, rule_->weights, ws);
     });
   });
-  double total = 0.0;  // sequential sum: reproducible whatever the thread count
-  for (double v : per_element) total += v;
-  return total;
+  return per_element;
+}
+
+Eigen::VectorXd Assembler::element_volumes() const {
+  Eigen::VectorXd volume(mesh_.num_elements());
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, mesh_.nodes.data(), e, ws);
+      double v = 0.0;
+      for (int q = 0; q < rule_->size(); ++q) v += reference_gradients(*tab_, rule_->weights, q, ws);
+      volume[e] = v;
+    });
+  });
+  return volume;
 }
 
 double Assembler::gradient(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g) const {

@@ -49,6 +49,10 @@ class Assembler {
 
   /// x: current positions, 3 * num_nodes (global DOF order). Total elastic energy.
   double energy(const Material& mat, const Eigen::VectorXd& x) const;
+  /// Elastic energy of each element (+infinity where the material is not defined).
+  Eigen::VectorXd element_energies(const Material& mat, const Eigen::VectorXd& x) const;
+  /// Reference volume of each element (the stiffness rule integrates 1 exactly).
+  Eigen::VectorXd element_volumes() const;
   /// Elastic energy; g (resized to 3 * num_nodes) receives the internal force vector.
   double gradient(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g) const;
   /// Energy, internal forces g (all DOFs) and the Hessian K over the free DOFs

@@ -154,7 +154,11 @@ Energies DynamicElasticity::energies() {
   Energies e;
   e.kinetic = 0.5 * v_.dot(mass_times(v_));
   const auto t0 = Clock::now();
-  e.elastic = assembler_->energy(material_, x_);
+  if (!rest_energy_) {
+    rest_energy_ = assembler_->energy(material_, Eigen::Map<const Eigen::VectorXd>(mesh_.nodes.data(), x_.size()));
+    ++stats_.energy_evaluations;
+  }
+  e.elastic = assembler_->energy(material_, x_) - *rest_energy_;
   stats_.assembly_seconds += since(t0);
   ++stats_.energy_evaluations;
   e.gravity = -f_gravity_.dot(displacement());
@@ -207,6 +211,34 @@ double DynamicElasticity::estimate_stable_dt(int iterations) {
   return omega > 0.0 ? limit / omega : std::numeric_limits<double>::infinity();
 }
 
+// Backward Euler with step halving: a step whose Newton solve fails (a
+// nonconvex region such as a buckling tube, where the projected Newton
+// converges slowly) is redone as two half steps, up to kMaxHalvings deep. The
+// state only changes when a (sub)step converges.
+void DynamicElasticity::implicit_euler_adaptive(StepReport& report, double h, int depth) {
+  constexpr int kMaxHalvings = 4;
+  const double saved_dt = options_.dt, t0 = t_;
+  options_.dt = h;
+  StepReport attempt;
+  step_implicit_euler(attempt);
+  options_.dt = saved_dt;
+  report.newton_iterations += attempt.newton_iterations;
+  report.linear_iterations += attempt.linear_iterations;
+  report.newton_residual = attempt.newton_residual;
+  if (attempt.ok) return;
+  if (depth >= kMaxHalvings) {
+    report.ok = false;
+    report.message = attempt.message + fmt::format(" (after {} halvings of dt)", kMaxHalvings);
+    return;
+  }
+  ++stats_.step_halvings;
+  implicit_euler_adaptive(report, 0.5 * h, depth + 1);
+  if (!report.ok) return;
+  t_ = t0 + 0.5 * h;
+  implicit_euler_adaptive(report, 0.5 * h, depth + 1);
+  t_ = t0;  // step() advances the time by the whole step
+}
+
 StepReport DynamicElasticity::step() {
   const auto t0 = Clock::now();
   StepReport report;
@@ -238,7 +270,7 @@ StepReport DynamicElasticity::step() {
       case Integrator::Leapfrog: step_leapfrog(); break;
       case Integrator::RK4: step_rk4(); break;
       case Integrator::SemiImplicit: step_semi_implicit(report); break;
-      case Integrator::ImplicitEuler: step_implicit_euler(report); break;
+      case Integrator::ImplicitEuler: implicit_euler_adaptive(report, options_.dt, 0); break;
     }
   } catch (const MaterialDomainError& e) {
     report.ok = false;

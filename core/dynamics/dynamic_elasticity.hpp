@@ -70,6 +70,7 @@ struct DynamicsStats {
   int newton_iterations = 0;
   int linear_iterations = 0;
   int floor_evaluations = 0;     ///< 0 without a floor
+  int step_halvings = 0;         ///< implicit Euler steps redone as two half steps
   int contact_node_steps = 0;    ///< nodes in contact, summed over steps
   double max_penetration = 0.0;
   bool polar_decompositions = false;  ///< whether the material computes one per quadrature point
@@ -108,6 +109,8 @@ class DynamicElasticity {
   const Eigen::VectorXd& positions() const { return x_; }
   const Eigen::VectorXd& velocities() const { return v_; }
   Eigen::VectorXd displacement() const;
+  /// Energies; the elastic one relative to the rest state (materials such as
+  /// Stable Neo-Hookean have psi(I) != 0).
   Energies energies();
   /// Linear and angular momentum (about the origin) from the mass in use.
   Eigen::Vector3d linear_momentum() const;
@@ -141,6 +144,7 @@ class DynamicElasticity {
   void step_rk4();
   void step_semi_implicit(StepReport& report);
   void step_implicit_euler(StepReport& report);
+  void implicit_euler_adaptive(StepReport& report, double h, int depth);
   void ensure_linear_solver();
   void ensure_consistent_mass();
 
@@ -164,7 +168,8 @@ class DynamicElasticity {
   bool a_valid_ = false;
   double t_ = 0.0;
   double energy_reference_ = -1.0;
-  double elastic_force_scale_ = 0.0;  ///< (2 mu + lambda) L^2, L the reference extent
+  double elastic_force_scale_ = 0.0;
+  std::optional<double> rest_energy_;  ///< elastic energy of the reference state  ///< (2 mu + lambda) L^2, L the reference extent
   bool moving_boundary_ = false;
   DynamicsStats stats_;
 };

@@ -1,0 +1,88 @@
+#pragma once
+// A scene: everything one run needs, read from a JSON file (scripts/scenes/ has
+// the built-in ones). Every key is validated before any work starts: unknown
+// keys, wrong types and out-of-range values raise SceneError naming the file and
+// the key path ("cantilever.json: material.poisson = 0.5 is out of range (-1, 0.5)").
+//
+// {
+//   "name": "cantilever",
+//   "mesh": {"box": {"min": [0,0,0], "max": [4,1,1], "cells": [8,2,2]}, "cell": "tet", "order": 2}
+//        or {"tube": {"r_in": 0.5, "r_out": 1, "height": 3, "cells": [2, 16, 8]}, "cell": "hex", "order": 2}
+//        or {"file": "ball.msh", "order": 2}          (a P1 .msh is upgraded to the order)
+//   "material": {"model": "stable-neohookean", "young": 1e6, "poisson": 0.45, "density": 1000},
+//   "integrator": "implicit-euler" | ... | "static",
+//   "dt": 0.01, "duration": 1.0,                    (not for "static")
+//   "mass": "lumped" | "consistent", "lumping": "row-sum" | "hrz",          (optional)
+//   "solver": {"linear": "cholmod", "newton_rtol": 1e-8, "newton_max_iterations": 50,
+//              "eisenstat_walker": false},                                (optional)
+//   "gravity": [0, 0, -9.81],                                             (optional)
+//   "damping": {"alpha": 0, "beta": 0},                                   (optional)
+//   "boundary": [{"nodes": "xmin", "motion": "fixed"},
+//                {"nodes": {"box": {"min": [..], "max": [..]}},
+//                 "motion": {"rotate": {"point": [..], "axis": [..], "omega": 1, "until": 2}}},
+//                {"nodes": "xmax", "motion": {"translate": {"velocity": [..], "until": 1}}}],
+//   "floor": {"height": 0, "normal": [0,0,1], "stiffness": 1e7},          (optional)
+//   "initial_velocity": [0, 0, 0],                                        (optional)
+//   "output": {"every": 1}                         (a frame every N steps; optional)
+// }
+#include "dynamics/dynamic_elasticity.hpp"
+#include "mesh/mesh.hpp"
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace hofem {
+
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct SceneBoundary {
+  std::string set;                       ///< a named node set, or empty when `box` is used
+  std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> box;  ///< nodes inside [min, max]
+  std::string motion = "fixed";          ///< "fixed", "translate" or "rotate"
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  ///< translate
+  Eigen::Vector3d point = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();  ///< rotate
+  double omega = 0.0;                    ///< rotate, rad/s
+  double until = 1e300;                  ///< motion stops at this time
+};
+
+struct Scene {
+  std::string file;  ///< where it was read from (for messages)
+  std::string name;
+  // mesh
+  std::string mesh_file;  ///< empty: box or tube generator
+  bool tube = false;      ///< hollow cylinder about z (mesh/tube_mesh.hpp)
+  double tube_r_in = 0.5, tube_r_out = 1.0, tube_height = 1.0;
+  Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Ones();
+  Eigen::Vector3i box_cells = Eigen::Vector3i::Constant(2);
+  CellType cell = CellType::Tetrahedron;
+  int order = 1;
+  // material
+  std::string material = "neohookean";
+  double young = 1e6, poisson = 0.3, density = 1000.0;
+  // time stepping
+  bool is_static = false;
+  DynamicsOptions dynamics;
+  double duration = 1.0;
+  std::vector<SceneBoundary> boundary;
+  Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();
+  int output_every = 1;
+};
+
+/// Parses and validates a scene file; throws SceneError naming the file and key.
+Scene read_scene(const std::string& path);
+/// The same for JSON text; `origin` names it in messages.
+Scene parse_scene(const std::string& text, const std::string& origin);
+
+/// Builds the scene's mesh (generator or .msh, upgraded to the order).
+Mesh build_scene_mesh(const Scene& scene);
+/// The node ids a boundary entry selects; throws SceneError if none.
+std::vector<int> boundary_nodes(const Scene& scene, const Mesh& mesh, size_t index);
+
+}  // namespace hofem

@@ -1,0 +1,311 @@
+// Reading and validating scene files (scene.hpp gives the format).
+#include "scene/scene.hpp"
+
+#include "dynamics/integrator.hpp"
+#include "material/material.hpp"
+#include "mesh/box_mesh.hpp"
+#include "mesh/gmsh_reader.hpp"
+#include "mesh/mesh_upgrade.hpp"
+#include "mesh/tube_mesh.hpp"
+#include "solver/linear_solver.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+namespace hofem {
+
+namespace {
+
+using json = nlohmann::json;
+
+// A JSON value with its key path, whose accessors validate and name the key.
+class Field {
+ public:
+  Field(const json& j, std::string path, const std::string& origin) : j_(j), path_(std::move(path)), origin_(origin) {}
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw SceneError(fmt::format("{}: {} {}", origin_, path_.empty() ? std::string("the scene") : path_, what));
+  }
+  const std::string& path() const { return path_; }
+  const json& raw() const { return j_; }
+
+  /// Requires an object whose keys are all in `allowed`.
+  void keys(std::initializer_list<const char*> allowed) const {
+    if (!j_.is_object()) fail("must be an object");
+    std::set<std::string> ok(allowed.begin(), allowed.end());
+    for (const auto& [k, v] : j_.items())
+      if (!ok.count(k))
+        throw SceneError(fmt::format("{}: key '{}' is unknown (valid: {})", origin_, join(k),
+                                     fmt::join(std::vector<std::string>(ok.begin(), ok.end()), ", ")));
+  }
+  bool has(const std::string& k) const { return j_.is_object() && j_.contains(k); }
+  Field at(const std::string& k) const {
+    if (!has(k)) throw SceneError(fmt::format("{}: key '{}' is missing", origin_, join(k)));
+    return Field(j_.at(k), join(k), origin_);
+  }
+  Field item(size_t i) const { return Field(j_.at(i), fmt::format("{}[{}]", path_, i), origin_); }
+
+  double number(double lo, double hi, bool lo_open = false, bool hi_open = false) const {
+    if (!j_.is_number()) fail(fmt::format("must be a number (got {})", j_.dump()));
+    const double v = j_.get<double>();
+    if (!std::isfinite(v) || (lo_open ? v <= lo : v < lo) || (hi_open ? v >= hi : v > hi))
+      fail(fmt::format("= {} is out of range {}{}, {}{}", v, lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]"));
+    return v;
+  }
+  int integer(int lo, int hi) const {
+    if (!j_.is_number_integer()) fail(fmt::format("must be an integer (got {})", j_.dump()));
+    const long long v = j_.get<long long>();
+    if (v < lo || v > hi) fail(fmt::format("= {} is out of range [{}, {}]", v, lo, hi));
+    return static_cast<int>(v);
+  }
+  bool boolean() const {
+    if (!j_.is_boolean()) fail(fmt::format("must be true or false (got {})", j_.dump()));
+    return j_.get<bool>();
+  }
+  std::string string() const {
+    if (!j_.is_string()) fail(fmt::format("must be a string (got {})", j_.dump()));
+    return j_.get<std::string>();
+  }
+  std::string choice(const std::vector<std::string>& valid) const {
+    const std::string s = string();
+    for (const auto& v : valid)
+      if (v == s) return s;
+    fail(fmt::format("= '{}' is not one of: {}", s, fmt::join(valid, ", ")));
+  }
+  Eigen::Vector3d vec3() const {
+    if (!j_.is_array() || j_.size() != 3) fail(fmt::format("must be an array of 3 numbers (got {})", j_.dump()));
+    Eigen::Vector3d v;
+    for (int i = 0; i < 3; ++i) v[i] = item(i).number(-1e300, 1e300);
+    return v;
+  }
+
+ private:
+  std::string join(const std::string& k) const { return path_.empty() ? k : path_ + "." + k; }
+  const json& j_;
+  std::string path_;
+  const std::string& origin_;
+};
+
+void parse_mesh(const Field& m, Scene& s) {
+  m.keys({"box", "tube", "file", "cell", "order"});
+  if (m.has("box") + m.has("file") + m.has("tube") != 1) m.fail("needs exactly one of 'box', 'tube' and 'file'");
+  if (m.has("tube")) {
+    const Field t = m.at("tube");
+    t.keys({"r_in", "r_out", "height", "cells"});
+    s.tube = true;
+    s.tube_r_in = t.at("r_in").number(0.0, 1e300, true);
+    s.tube_r_out = t.at("r_out").number(s.tube_r_in, 1e300, true);
+    s.tube_height = t.at("height").number(0.0, 1e300, true);
+    const Field c = t.at("cells");
+    if (!c.raw().is_array() || c.raw().size() != 3) c.fail("must be an array of 3 integers (radial, around, along z)");
+    s.box_cells << c.item(0).integer(1, 1000), c.item(1).integer(3, 10000), c.item(2).integer(1, 1000);
+    s.cell = m.has("cell") ? (m.at("cell").choice({"tet", "hex"}) == "hex" ? CellType::Hexahedron : CellType::Tetrahedron)
+                           : CellType::Tetrahedron;
+  } else if (m.has("box")) {
+    const Field b = m.at("box");
+    b.keys({"min", "max", "cells"});
+    s.box_min = b.at("min").vec3();
+    s.box_max = b.at("max").vec3();
+    if (!(s.box_max.array() > s.box_min.array()).all()) b.fail("needs max > min in every coordinate");
+    const Field c = b.at("cells");
+    if (!c.raw().is_array() || c.raw().size() != 3) c.fail("must be an array of 3 integers");
+    for (int i = 0; i < 3; ++i) s.box_cells[i] = c.item(i).integer(1, 1000);
+    s.cell = m.has("cell") ? (m.at("cell").choice({"tet", "hex"}) == "hex" ? CellType::Hexahedron : CellType::Tetrahedron)
+                           : CellType::Tetrahedron;
+  } else {
+    s.mesh_file = m.at("file").string();
+    if (m.has("cell")) m.at("cell").fail("is given by the .msh file; remove it");
+    // Relative paths are relative to the scene file.
+    if (!s.mesh_file.empty() && std::filesystem::path(s.mesh_file).is_relative() && !s.file.empty())
+      s.mesh_file = (std::filesystem::path(s.file).parent_path() / s.mesh_file).string();
+  }
+  s.order = m.has("order") ? m.at("order").integer(1, s.cell == CellType::Hexahedron ? 2 : 6) : 1;
+}
+
+void parse_boundary(const Field& b, Scene& s) {
+  if (!b.raw().is_array()) b.fail("must be an array of {\"nodes\", \"motion\"} objects");
+  for (size_t i = 0; i < b.raw().size(); ++i) {
+    const Field e = b.item(i);
+    e.keys({"nodes", "motion"});
+    SceneBoundary bc;
+    const Field nodes = e.at("nodes");
+    if (nodes.raw().is_string()) {
+      bc.set = nodes.string();
+    } else {
+      nodes.keys({"box"});
+      const Field box = nodes.at("box");
+      box.keys({"min", "max"});
+      bc.box = std::make_pair(box.at("min").vec3(), box.at("max").vec3());
+    }
+    const Field motion = e.at("motion");
+    if (motion.raw().is_string()) {
+      bc.motion = motion.choice({"fixed"});
+    } else {
+      motion.keys({"translate", "rotate"});
+      if (motion.raw().size() != 1) motion.fail("needs exactly one of 'translate' and 'rotate'");
+      if (motion.has("translate")) {
+        const Field t = motion.at("translate");
+        t.keys({"velocity", "until"});
+        bc.motion = "translate";
+        bc.velocity = t.at("velocity").vec3();
+        if (t.has("until")) bc.until = t.at("until").number(0.0, 1e300);
+      } else {
+        const Field r = motion.at("rotate");
+        r.keys({"point", "axis", "omega", "until"});
+        bc.motion = "rotate";
+        bc.point = r.at("point").vec3();
+        bc.axis = r.at("axis").vec3();
+        if (!(bc.axis.norm() > 0.0)) r.at("axis").fail("must be a non-zero vector");
+        bc.omega = r.at("omega").number(-1e6, 1e6);
+        if (r.has("until")) bc.until = r.at("until").number(0.0, 1e300);
+      }
+    }
+    s.boundary.push_back(bc);
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& origin) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // e.byte is the offset of the error; report the line.
+    const size_t byte = std::min<size_t>(e.byte, text.size());
+    const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(byte > 0 ? byte - 1 : 0), '\n');
+    throw SceneError(fmt::format("{}: line {}: not valid JSON ({})", origin, line, e.what()));
+  }
+  Scene s;
+  s.file = origin;
+  const Field root(j, "", origin);
+  root.keys({"name", "mesh", "material", "integrator", "dt", "duration", "mass", "lumping", "solver", "gravity",
+             "damping", "boundary", "floor", "initial_velocity", "output"});
+  s.name = root.has("name") ? root.at("name").string() : std::filesystem::path(origin).stem().string();
+  parse_mesh(root.at("mesh"), s);
+
+  const Field mat = root.at("material");
+  mat.keys({"model", "young", "poisson", "density"});
+  s.material = mat.at("model").choice(material_names());
+  s.young = mat.at("young").number(0.0, 1e300, true);
+  s.poisson = mat.at("poisson").number(-1.0, 0.5, true, true);
+  s.density = mat.has("density") ? mat.at("density").number(0.0, 1e300, true) : 1000.0;
+
+  std::vector<std::string> integrators = integrator_names();
+  integrators.push_back("static");
+  const std::string integrator = root.at("integrator").choice(integrators);
+  s.is_static = integrator == "static";
+  DynamicsOptions& d = s.dynamics;
+  if (!s.is_static) {
+    d.integrator = parse_integrator(integrator);
+    d.dt = root.at("dt").number(0.0, 1e300, true);
+    s.duration = root.at("duration").number(0.0, 1e300, true);
+  } else {
+    for (const char* k : {"dt", "duration", "mass", "lumping", "damping", "floor", "initial_velocity", "output"})
+      if (root.has(k)) root.at(k).fail("does not apply to a static scene; remove it");
+  }
+  d.density = s.density;
+  if (root.has("mass"))
+    d.mass = root.at("mass").choice({"lumped", "consistent"}) == "lumped" ? MassKind::Lumped : MassKind::Consistent;
+  if (root.has("lumping"))
+    d.lumping = root.at("lumping").choice({"row-sum", "hrz"}) == "hrz" ? MassLumping::HRZ : MassLumping::RowSum;
+  if (root.has("solver")) {
+    const Field sv = root.at("solver");
+    sv.keys({"linear", "newton_rtol", "newton_max_iterations", "eisenstat_walker"});
+    if (sv.has("linear")) d.linear_solver = sv.at("linear").choice(linear_solver_names());
+    if (sv.has("newton_rtol")) d.newton.rtol = sv.at("newton_rtol").number(0.0, 1.0, true, true);
+    if (sv.has("newton_max_iterations")) d.newton.max_iterations = sv.at("newton_max_iterations").integer(1, 10000);
+    if (sv.has("eisenstat_walker")) d.newton.eisenstat_walker = sv.at("eisenstat_walker").boolean();
+  }
+  if (root.has("gravity")) d.gravity = root.at("gravity").vec3();
+  if (root.has("damping")) {
+    const Field dm = root.at("damping");
+    dm.keys({"alpha", "beta"});
+    if (dm.has("alpha")) d.rayleigh_alpha = dm.at("alpha").number(0.0, 1e300);
+    if (dm.has("beta")) d.rayleigh_beta = dm.at("beta").number(0.0, 1e300);
+  }
+  if (root.has("floor")) {
+    const Field f = root.at("floor");
+    f.keys({"height", "normal", "stiffness"});
+    Floor floor;
+    if (f.has("height")) floor.height = f.at("height").number(-1e300, 1e300);
+    if (f.has("normal")) {
+      floor.normal = f.at("normal").vec3();
+      if (!(floor.normal.norm() > 0.0)) f.at("normal").fail("must be a non-zero vector");
+    }
+    floor.stiffness = f.at("stiffness").number(0.0, 1e300, true);
+    d.floor = floor;
+  }
+  if (root.has("boundary")) parse_boundary(root.at("boundary"), s);
+  if (root.has("initial_velocity")) s.initial_velocity = root.at("initial_velocity").vec3();
+  if (root.has("output")) {
+    const Field o = root.at("output");
+    o.keys({"every"});
+    s.output_every = o.at("every").integer(1, 1000000000);
+  }
+  return s;
+}
+
+Scene read_scene(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(fmt::format("{}: cannot open the scene file", path));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scene(ss.str(), path);
+}
+
+Mesh build_scene_mesh(const Scene& s) {
+  if (s.tube)
+    return hollow_cylinder_mesh(s.tube_r_in, s.tube_r_out, s.tube_height, s.box_cells.x(), s.box_cells.y(),
+                                s.box_cells.z(), s.cell, s.order);
+  if (s.mesh_file.empty())
+    return box_mesh(BoxSpec{{s.box_min.x(), s.box_min.y(), s.box_min.z()},
+                            {s.box_max.x(), s.box_max.y(), s.box_max.z()},
+                            {s.box_cells.x(), s.box_cells.y(), s.box_cells.z()}},
+                    s.cell, s.order);
+  Mesh m;
+  try {
+    m = read_gmsh(s.mesh_file);
+  } catch (const std::exception& e) {
+    throw SceneError(fmt::format("{}: mesh.file: {}", s.file, e.what()));
+  }
+  if (m.order == s.order) return m;
+  if (m.order != 1 || m.cell != CellType::Tetrahedron)
+    throw SceneError(fmt::format("{}: mesh.order = {}: the mesh '{}' has order {}; only P1 tetrahedra are upgraded",
+                                 s.file, s.order, s.mesh_file, m.order));
+  return upgrade_order(m, s.order);
+}
+
+std::vector<int> boundary_nodes(const Scene& s, const Mesh& mesh, size_t index) {
+  const SceneBoundary& b = s.boundary.at(index);
+  std::vector<int> nodes;
+  if (!b.set.empty()) {
+    const auto it = mesh.node_sets.find(b.set);
+    if (it == mesh.node_sets.end()) {
+      std::vector<std::string> names;
+      for (const auto& [k, v] : mesh.node_sets) names.push_back(k);
+      throw SceneError(fmt::format("{}: boundary[{}].nodes = '{}' is not a node set of the mesh (valid: {})", s.file,
+                                   index, b.set, fmt::join(names, ", ")));
+    }
+    nodes = it->second;
+  } else {
+    // A small tolerance so that boxes drawn on the mesh's faces catch them.
+    const double tol = 1e-9 * (mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff()).norm();
+    for (int i = 0; i < mesh.num_nodes(); ++i)
+      if ((mesh.nodes.col(i).array() >= b.box->first.array() - tol).all() &&
+          (mesh.nodes.col(i).array() <= b.box->second.array() + tol).all())
+        nodes.push_back(i);
+  }
+  if (nodes.empty()) throw SceneError(fmt::format("{}: boundary[{}].nodes selects no node of the mesh", s.file, index));
+  return nodes;
+}
+
+}  // namespace hofem

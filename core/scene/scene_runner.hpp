@@ -1,0 +1,34 @@
+#pragma once
+// Runs a scene: builds the mesh, material and boundary motions, steps the
+// dynamics (or solves the static problem) and writes into an output directory
+//   frame_00000.vtu ...  displacement and velocity per node, strain-energy
+//                        density per cell (a frame every output.every steps)
+//   <name>.pvd           the frames with their times (ParaView opens this)
+//   stats.json           per step: Newton and linear iterations, residual,
+//                        energies, seconds; at the end: totals and what was
+//                        built and how often (DynamicsStats)
+#include "scene/scene.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace hofem {
+
+struct SceneRunOptions {
+  bool progress = false;  ///< a progress bar on stderr
+  bool write_frames = true;
+};
+
+struct SceneRunResult {
+  bool ok = true;
+  std::string message;
+  nlohmann::json stats;  ///< what stats.json holds
+};
+
+/// Throws SceneError for problems found before stepping (mesh, node sets,
+/// output directory); a failed step ends the run with ok = false and the
+/// message, after writing what was computed.
+SceneRunResult run_scene(const Scene& scene, const std::string& out_dir, const SceneRunOptions& options = {});
+
+}  // namespace hofem
