@@ -239,8 +239,39 @@ void DynamicElasticity::implicit_euler_adaptive(StepReport& report, double h, in
   t_ = t0;  // step() advances the time by the whole step
 }
 
+// A released node set becomes free: new DOF map, and with it a new assembler
+// (sparsity pattern), consistent mass and linear solver. Happens once per set.
+void DynamicElasticity::release_due_motions() {
+  bool any = false;
+  for (PrescribedMotion& m : motions_)
+    if (!m.nodes.empty() && t_ >= m.release - 1e-9 * options_.dt) {
+      m.nodes.clear();
+      any = true;
+    }
+  if (!any) return;
+  ++stats_.releases;
+  dofs_ = DofMap(mesh_.num_nodes(), constrained_nodes(motions_, mesh_.num_nodes()));
+  assembler_ = std::make_unique<Assembler>(mesh_, dofs_, options_.quadrature_degree);
+  moving_boundary_ = false;
+  for (const PrescribedMotion& m : motions_) moving_boundary_ = moving_boundary_ || (m.moves() && !m.nodes.empty());
+  if (mass_kind_ == MassKind::Consistent) {
+    M_ = SparseMatrix();
+    ensure_consistent_mass();
+    if (mass_solver_) {
+      if (!mass_solver_->factorize(M_)) throw std::runtime_error("dynamics: the consistent mass is not positive definite");
+      ++stats_.mass_factorizations;
+    }
+  }
+  if (solver_) {
+    solver_.reset();  // a new pattern and DOF map: mesh-aware preconditioners start over
+    ensure_linear_solver();
+  }
+  a_valid_ = false;
+}
+
 StepReport DynamicElasticity::step() {
   const auto t0 = Clock::now();
+  release_due_motions();
   StepReport report;
   const Eigen::VectorXd x_old = x_, v_old = v_;
   const double t_old = t_;

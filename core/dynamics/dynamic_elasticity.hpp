@@ -71,6 +71,7 @@ struct DynamicsStats {
   int linear_iterations = 0;
   int floor_evaluations = 0;     ///< 0 without a floor
   int step_halvings = 0;         ///< implicit Euler steps redone as two half steps
+  int releases = 0;              ///< times prescribed node sets were released (DOF map rebuilt)
   int contact_node_steps = 0;    ///< nodes in contact, summed over steps
   double max_penetration = 0.0;
   bool polar_decompositions = false;  ///< whether the material computes one per quadrature point
@@ -146,6 +147,7 @@ class DynamicElasticity {
   void step_implicit_euler(StepReport& report);
   void implicit_euler_adaptive(StepReport& report, double h, int depth);
   void ensure_linear_solver();
+  void release_due_motions();
   void ensure_consistent_mass();
 
   const Mesh& mesh_;

@@ -20,7 +20,9 @@
 //   "boundary": [{"nodes": "xmin", "motion": "fixed"},
 //                {"nodes": {"box": {"min": [..], "max": [..]}},
 //                 "motion": {"rotate": {"point": [..], "axis": [..], "omega": 1, "until": 2}}},
-//                {"nodes": "xmax", "motion": {"translate": {"velocity": [..], "until": 1}}}],
+//                {"nodes": "xmax", "motion": {"translate": {"velocity": [..], "until": 1}}, "release": 1}],
+//                (rotate also takes "velocity": the axis moves, a screw motion; "release": the
+//                 nodes become free at that time, like a slingshot's)
 //   "floor": {"height": 0, "normal": [0,0,1], "stiffness": 1e7},          (optional)
 //   "initial_velocity": [0, 0, 0],                                        (optional)
 //   "output": {"every": 1}                         (a frame every N steps; optional)
@@ -30,6 +32,7 @@
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -50,6 +53,7 @@ struct SceneBoundary {
   Eigen::Vector3d point = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ();  ///< rotate
   double omega = 0.0;                    ///< rotate, rad/s
   double until = 1e300;                  ///< motion stops at this time
+  double release = std::numeric_limits<double>::infinity();  ///< the nodes become free at this time
 };
 
 struct Scene {

@@ -134,7 +134,7 @@ void parse_boundary(const Field& b, Scene& s) {
   if (!b.raw().is_array()) b.fail("must be an array of {\"nodes\", \"motion\"} objects");
   for (size_t i = 0; i < b.raw().size(); ++i) {
     const Field e = b.item(i);
-    e.keys({"nodes", "motion"});
+    e.keys({"nodes", "motion", "release"});
     SceneBoundary bc;
     const Field nodes = e.at("nodes");
     if (nodes.raw().is_string()) {
@@ -159,15 +159,17 @@ void parse_boundary(const Field& b, Scene& s) {
         if (t.has("until")) bc.until = t.at("until").number(0.0, 1e300);
       } else {
         const Field r = motion.at("rotate");
-        r.keys({"point", "axis", "omega", "until"});
+        r.keys({"point", "axis", "omega", "until", "velocity"});
         bc.motion = "rotate";
         bc.point = r.at("point").vec3();
         bc.axis = r.at("axis").vec3();
         if (!(bc.axis.norm() > 0.0)) r.at("axis").fail("must be a non-zero vector");
         bc.omega = r.at("omega").number(-1e6, 1e6);
         if (r.has("until")) bc.until = r.at("until").number(0.0, 1e300);
+        if (r.has("velocity")) bc.velocity = r.at("velocity").vec3();
       }
     }
+    if (e.has("release")) bc.release = e.at("release").number(0.0, 1e300);
     s.boundary.push_back(bc);
   }
 }

@@ -26,8 +26,10 @@ std::vector<PrescribedMotion> scene_motions(const Scene& s, const Mesh& mesh) {
     const SceneBoundary& b = s.boundary[i];
     std::vector<int> nodes = boundary_nodes(s, mesh, i);
     if (b.motion == "translate") motions.push_back(translation(std::move(nodes), b.velocity, b.until));
-    else if (b.motion == "rotate") motions.push_back(rotation(std::move(nodes), b.point, b.axis, b.omega, b.until));
+    else if (b.motion == "rotate")
+      motions.push_back(rotation(std::move(nodes), b.point, b.axis, b.omega, b.until, b.velocity));
     else motions.push_back(fixed_nodes(std::move(nodes)));
+    motions.back().release = b.release;
   }
   return motions;
 }
@@ -63,6 +65,7 @@ json stats_json(const DynamicsStats& st) {
               {"linear_iterations", st.linear_iterations},
               {"floor_evaluations", st.floor_evaluations},
               {"step_halvings", st.step_halvings},
+              {"releases", st.releases},
               {"contact_node_steps", st.contact_node_steps},
               {"max_penetration", st.max_penetration},
               {"polar_decompositions", st.polar_decompositions},

@@ -2,6 +2,7 @@
 
 #include "basis_checks.hpp"
 #include "convergence_checks.hpp"
+#include "dynamics_checks.hpp"
 #include "element_checks.hpp"
 #include "material_checks.hpp"
 #include "quadrature_checks.hpp"
@@ -16,6 +17,7 @@ Report run_fast_checks() {
   add_material_checks(report);
   add_element_checks(report);
   add_patch_checks(report);
+  add_dynamics_checks(report);
   return report;
 }
 
