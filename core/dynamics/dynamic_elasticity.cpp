@@ -207,6 +207,13 @@ double DynamicElasticity::estimate_stable_dt(int iterations) {
     lambda = w.dot(z) > 0.0 ? z.norm() : lambda;
     w = z;
   }
+  // The floor's penalty adds k n n^T per node in contact: by Weyl's inequality
+  // lambda_max grows by at most k / (smallest nodal mass) for a lumped mass (for
+  // the consistent one, with its smallest diagonal entry, an estimate only).
+  if (options_.floor) {
+    const double m_min = mass_kind_ == MassKind::Lumped ? lumped_.minCoeff() : M_.diagonal().minCoeff();
+    lambda += options_.floor->stiffness / m_min;
+  }
   const double omega = std::sqrt(std::max(lambda, 0.0));
   return omega > 0.0 ? limit / omega : std::numeric_limits<double>::infinity();
 }
