@@ -61,7 +61,6 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
   // Consistent mass: N_i N_j has degree 2p on affine cells (2p per direction on hexes).
   mass_degree_ = 2 * mesh.order;
   assembler_ = std::make_unique<Assembler>(mesh_, dofs_, o.quadrature_degree);
-  stats_.polar_decompositions = material.needs_polar_decomposition();
   if (mass_kind_ == MassKind::Lumped) {
     lumped_ = assembler_->lumped_mass(o.density, mass_degree_, lumping_);
     stats_.mass = lumping_ == MassLumping::RowSum ? "lumped (row-sum)" : "lumped (HRZ)";
@@ -93,6 +92,17 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
 }
 
 DynamicElasticity::~DynamicElasticity() = default;
+
+const DynamicsStats& DynamicElasticity::stats() const {
+  // Every energy, gradient or Hessian assembly evaluates the material once per
+  // quadrature point of every element.
+  const long long evaluations = stats_.energy_evaluations + stats_.gradient_evaluations + stats_.hessian_assemblies;
+  stats_.polar_decompositions =
+      material_.needs_polar_decomposition()
+          ? evaluations * mesh_.num_elements() * static_cast<long long>(assembler_->rule().size())
+          : 0;
+  return stats_;
+}
 
 void DynamicElasticity::ensure_consistent_mass() {
   if (M_.size() > 0) return;

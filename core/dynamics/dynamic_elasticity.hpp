@@ -74,7 +74,9 @@ struct DynamicsStats {
   int releases = 0;              ///< times prescribed node sets were released (DOF map rebuilt)
   int contact_node_steps = 0;    ///< nodes in contact, summed over steps
   double max_penetration = 0.0;
-  bool polar_decompositions = false;  ///< whether the material computes one per quadrature point
+  /// Polar decompositions (SVDs) of F computed by the material: one per
+  /// quadrature point and evaluation for corotated, none for the others.
+  long long polar_decompositions = 0;
   double assembly_seconds = 0.0, solve_seconds = 0.0;
 };
 
@@ -122,7 +124,7 @@ class DynamicElasticity {
   /// Hessian is assembled). Infinity for the implicit integrators.
   double estimate_stable_dt(int iterations = 40);
 
-  const DynamicsStats& stats() const { return stats_; }
+  const DynamicsStats& stats() const;
   const DynamicsOptions& options() const { return options_; }
   const DofMap& dofs() const { return dofs_; }
   const Assembler& assembler() const { return *assembler_; }
@@ -173,7 +175,7 @@ class DynamicElasticity {
   double elastic_force_scale_ = 0.0;
   std::optional<double> rest_energy_;  ///< elastic energy of the reference state  ///< (2 mu + lambda) L^2, L the reference extent
   bool moving_boundary_ = false;
-  DynamicsStats stats_;
+  mutable DynamicsStats stats_;
 };
 
 }  // namespace hofem

@@ -96,6 +96,17 @@ TEST(Scenes, InvalidScenesNameTheFileAndTheKey) {
         << e.what();
   }
   EXPECT_THROW(read_scene("/nonexistent/scene.json"), SceneError);
+  // A missing mesh file is reported with the key that names it.
+  const Scene missing = parse_scene(with("\"box\": {\"min\": [0, 0, 0], \"max\": [1, 1, 1], \"cells\": [1, 1, 1]}, \"cell\": \"tet\", ",
+                                         "\"file\": \"/nonexistent/part.msh\", "),
+                                    "t.json");
+  try {
+    build_scene_mesh(missing);
+    FAIL() << "a missing mesh file was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.json: mesh.file: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/part.msh"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Scenes, BuiltInScenesAreValid) {
@@ -194,7 +205,13 @@ TEST(Scenes, ImplicitAndStaticRunsBuildOnlyWhatTheyNeed) {
   EXPECT_EQ(r.stats["built"]["symbolic_analyses"].get<int>(), 1);
   EXPECT_EQ(r.stats["built"]["floor_evaluations"].get<int>(), 0);
   EXPECT_EQ(r.stats["built"]["mass_matrices_built"].get<int>(), 1);
-  EXPECT_FALSE(r.stats["built"]["polar_decompositions"].get<bool>());
+  EXPECT_EQ(r.stats["built"]["polar_decompositions"].get<long long>(), 0);  // Neo-Hookean needs none
+  // Corotated computes one per quadrature point and evaluation.
+  Scene c = s;
+  c.material = "corotated";
+  const SceneRunResult rc = run_scene(c, dir, o);
+  ASSERT_TRUE(rc.ok) << rc.message;
+  EXPECT_GT(rc.stats["built"]["polar_decompositions"].get<long long>(), 0);
 
   Scene st = parse_scene(with("\"implicit-euler\", \"dt\": 0.01, \"duration\": 0.03", "\"static\", \"gravity\": [0, 0, -9.81]"),
                          "static.json");
