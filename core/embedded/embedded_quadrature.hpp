@@ -1,0 +1,54 @@
+#pragma once
+// Per-cell quadrature for embedded (finite cell) simulation, second seed §4.5:
+// the embedded geometry is a set of tetrahedra; the part of it inside a
+// background cell is clipped into tetrahedra (tet_clipping.hpp), and a tet rule
+// of degree m is mapped onto each piece. The result integrates polynomials of
+// degree <= m over (geometry ∩ cell) exactly; its many points are what the
+// simplification of §4.4 then reduces to at most C(m+3, 3).
+//
+// A uniform bucket grid over the embedded tets' bounding boxes gives each cell
+// its candidate tets, so cells do not test every embedded tet.
+#include "embedded/tet_clipping.hpp"
+#include "mesh/mesh.hpp"
+
+#include <Eigen/Core>
+
+#include <span>
+#include <vector>
+
+namespace hofem {
+
+/// Points (physical coordinates) and weights.
+struct PhysicalRule {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> weights;
+  int size() const { return static_cast<int>(weights.size()); }
+  double volume() const;
+};
+
+/// The vertex tetrahedra of a tetrahedral mesh (its order-1 geometry).
+std::vector<Tetrahedron> mesh_tetrahedra(const Mesh& mesh);
+
+/// Appends to `rule` a degree-m rule over the part of `tet` inside every half-space.
+void add_clipped_rule(const Tetrahedron& tet, std::span<const HalfSpace> cell, int degree, PhysicalRule& rule);
+
+/// Uniform grid of buckets over the tets' bounding box; each tet is listed in
+/// every bucket its bounding box overlaps.
+class TetBucketGrid {
+ public:
+  explicit TetBucketGrid(std::span<const Tetrahedron> tets, int buckets_per_axis = 0);  ///< 0: ~cbrt(n)
+  /// Indices of the tets whose bounding boxes may overlap [lo, hi], each once, ascending.
+  std::vector<int> candidates(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
+
+ private:
+  Eigen::Vector3d lo_, size_;
+  int n_ = 1;
+  std::vector<std::vector<int>> buckets_;
+  std::vector<Eigen::Vector3d> tet_lo_, tet_hi_;
+};
+
+/// Degree-m rule over (embedded tets ∩ box [lo, hi]), using the grid's candidates.
+PhysicalRule box_cell_rule(std::span<const Tetrahedron> tets, const TetBucketGrid& grid, const Eigen::Vector3d& lo,
+                           const Eigen::Vector3d& hi, int degree);
+
+}  // namespace hofem
