@@ -97,6 +97,17 @@ Assembler::Assembler(const Mesh& mesh, const DofMap& dofs, int quadrature_degree
   pattern_ = std::make_unique<SparsityPattern>(mesh, dofs);
 }
 
+void Assembler::set_element_quadrature(std::vector<std::shared_ptr<const ElementQuadrature>> per_element) {
+  if (!per_element.empty() && static_cast<int>(per_element.size()) != mesh_.num_elements())
+    throw std::invalid_argument(fmt::format("Assembler: {} element rules for {} elements", per_element.size(),
+                                            mesh_.num_elements()));
+  for (size_t e = 0; e < per_element.size(); ++e)
+    if (per_element[e] && (per_element[e]->rule.cell != mesh_.cell ||
+                           per_element[e]->tabulation.num_basis != mesh_.nodes_per_element()))
+      throw std::invalid_argument(fmt::format("Assembler: the rule of element {} is for another cell or basis", e));
+  element_quadrature_ = std::move(per_element);
+}
+
 namespace {
 void check_size(const Eigen::VectorXd& x, const Mesh& mesh) {
   if (x.size() != 3 * mesh.num_nodes())
@@ -118,7 +129,7 @@ Eigen::VectorXd Assembler::element_energies(const Material& mat, const Eigen::Ve
     constexpr int N = decltype(n)::value;
     for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
       gather(mesh_, x.data(), e, ws);
-      per_element[e] = element_energy(mat, *tab_, rule_->weights, ws);
+      per_element[e] = element_energy(mat, tabulation_of(e), weights_of(e), ws);
     });
   });
   return per_element;
@@ -131,7 +142,8 @@ Eigen::VectorXd Assembler::element_volumes() const {
     for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
       gather(mesh_, mesh_.nodes.data(), e, ws);
       double v = 0.0;
-      for (int q = 0; q < rule_->size(); ++q) v += reference_gradients(*tab_, rule_->weights, q, ws);
+      const Eigen::VectorXd& w = weights_of(e);
+      for (int q = 0; q < w.size(); ++q) v += reference_gradients(tabulation_of(e), w, q, ws);
       volume[e] = v;
     });
   });
@@ -146,7 +158,7 @@ double Assembler::gradient(const Material& mat, const Eigen::VectorXd& x, Eigen:
     constexpr int N = decltype(n)::value;
     for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
       gather(mesh_, x.data(), e, ws);
-      per_element[e] = element_gradient(mat, *tab_, rule_->weights, ws);
+      per_element[e] = element_gradient(mat, tabulation_of(e), weights_of(e), ws);
       for (int i = 0; i < ws.nodes(); ++i) g.segment<3>(3 * mesh_.elements(i, e)) += ws.g.template segment<3>(3 * i);
     });
   });
@@ -168,7 +180,7 @@ double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::
     constexpr int N = decltype(n)::value;
     for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
       gather(mesh_, x.data(), e, ws);
-      per_element[e] = element_hessian(mat, *tab_, rule_->weights, ws, project);
+      per_element[e] = element_hessian(mat, tabulation_of(e), weights_of(e), ws, project);
       for (int i = 0; i < ws.nodes(); ++i) g.segment<3>(3 * mesh_.elements(i, e)) += ws.g.template segment<3>(3 * i);
       const int* map = pattern_->element_map(e);
       for (int r = 0; r < bd; ++r)

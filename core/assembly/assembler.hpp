@@ -20,6 +20,7 @@
 
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace hofem {
 
@@ -59,6 +60,14 @@ class Assembler {
   /// (K must have this assembler's pattern; use new_matrix()). project: PSD
   /// projection of dP/dF at every quadrature point.
   double hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g, SparseMatrix& K, bool project) const;
+  /// Per-element quadrature (finite cell method: each cut cell has its own rule,
+  /// see embedded/): entry e replaces the stiffness rule of element e for energy,
+  /// gradient, Hessian and element volumes; null keeps the standard rule, an
+  /// empty rule makes the element contribute nothing. Empty vector: all standard.
+  /// Throws std::invalid_argument if the size or an entry's cell/basis does not match.
+  void set_element_quadrature(std::vector<std::shared_ptr<const ElementQuadrature>> per_element);
+  const std::vector<std::shared_ptr<const ElementQuadrature>>& element_quadrature() const { return element_quadrature_; }
+
   /// A zero matrix with the free-DOF pattern.
   SparseMatrix new_matrix() const { return pattern_->zero_matrix(); }
 
@@ -81,6 +90,14 @@ class Assembler {
   const QuadratureRule* rule_;
   const BasisTabulation* tab_;
   std::unique_ptr<SparsityPattern> pattern_;
+  std::vector<std::shared_ptr<const ElementQuadrature>> element_quadrature_;
+  /// Tabulation and weights element e integrates with.
+  const BasisTabulation& tabulation_of(int e) const {
+    return element_quadrature_.empty() || !element_quadrature_[e] ? *tab_ : element_quadrature_[e]->tabulation;
+  }
+  const Eigen::VectorXd& weights_of(int e) const {
+    return element_quadrature_.empty() || !element_quadrature_[e] ? rule_->weights : element_quadrature_[e]->rule.weights;
+  }
 };
 
 }  // namespace hofem

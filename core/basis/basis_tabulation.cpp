@@ -39,4 +39,22 @@ const BasisTabulation& cached_tabulation(CellType cell, int order, int quadratur
   return *slot;
 }
 
+ElementQuadrature make_element_quadrature(CellType cell, int order, Eigen::MatrixXd points, Eigen::VectorXd weights) {
+  if (points.rows() != dimension(cell) || points.cols() != weights.size())
+    throw std::invalid_argument("make_element_quadrature: points must be dim x n with n weights");
+  ElementQuadrature q;
+  q.rule.cell = cell;
+  q.rule.id = "element";
+  q.rule.source = "per-element rule (finite cell method)";
+  q.rule.points = std::move(points);
+  q.rule.weights = std::move(weights);
+  if (q.rule.size() > 0) {
+    q.tabulation = tabulate(lagrange_basis(cell, order), q.rule);
+  } else {
+    q.tabulation.num_basis = lagrange_basis(cell, order).size();
+    q.tabulation.dim = dimension(cell);
+  }
+  return q;
+}
+
 }  // namespace hofem

@@ -22,6 +22,17 @@ struct BasisTabulation {
 /// Tabulates `basis` over `rule` (cells must match).
 BasisTabulation tabulate(const ReferenceBasis& basis, const QuadratureRule& rule);
 
+/// A quadrature rule of one element with the basis tabulated on it: the finite
+/// cell method gives every cut cell its own rule (second seed §4.4-4.5).
+struct ElementQuadrature {
+  QuadratureRule rule;
+  BasisTabulation tabulation;
+};
+
+/// lagrange_basis(cell, order) tabulated on the given reference points (dim x n)
+/// and weights. An empty rule is allowed (an element that contributes nothing).
+ElementQuadrature make_element_quadrature(CellType cell, int order, Eigen::MatrixXd points, Eigen::VectorXd weights);
+
 /// Cached tabulation of lagrange_basis(cell, order) over quadrature_rule(cell, degree):
 /// built on first use, then shared (thread-safe; the reference stays valid).
 const BasisTabulation& cached_tabulation(CellType cell, int order, int quadrature_degree);

@@ -15,7 +15,7 @@ namespace {
 // Our Gmsh-ordered Tet10 must equal these closed forms node by node.
 TEST(SimplexLagrangeBasis, Tet10MatchesThesisClosedForms) {
   const ReferenceBasis& b = lagrange_basis(CellType::Tetrahedron, 2);
-  for (const Eigen::Vector3d x : {Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Vector3d(0.25, 0.05, 0.6)}) {
+  for (const Eigen::Vector3d& x : {Eigen::Vector3d(0.1, 0.2, 0.3), Eigen::Vector3d(0.25, 0.05, 0.6)}) {
     const double L[4] = {1 - x.sum(), x[0], x[1], x[2]};  // Gmsh vertex k <-> barycentric L[k]
     const Eigen::VectorXd N = b.evaluate(x);
     for (int v = 0; v < 4; ++v) EXPECT_NEAR(N[v], L[v] * (2 * L[v] - 1), 1e-14);
