@@ -226,73 +226,59 @@ void element_mass(const QuadratureRule& rule, const BasisTabulation& tab, double
   }
 }
 
+// Runs body(e, Me) with the element mass matrix of every element (rule of the
+// given degree), in parallel by colour like the other assemblies.
+template <class Body>
+void for_each_element_mass(const Mesh& mesh, const SparsityPattern& pattern, double density, int degree, Body&& body) {
+  const QuadratureRule& rule = quadrature_rule(mesh.cell, degree);
+  const BasisTabulation& tab = cached_tabulation(mesh.cell, mesh.order, degree);
+  dispatch_nodes(mesh.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh, pattern, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh, mesh.nodes.data(), e, ws);
+      // Built once per simulation (or per mass action), so the dynamic-size case may allocate here.
+      Eigen::Matrix<double, N, N> Me;
+      element_mass(rule, tab, density, ws, Me);
+      body(e, Me);
+    });
+  });
+}
+
 SparseMatrix Assembler::mass_matrix(double density, int degree) const {
-  const QuadratureRule& rule = quadrature_rule(mesh_.cell, degree);
-  const BasisTabulation& tab = cached_tabulation(mesh_.cell, mesh_.order, degree);
   SparseMatrix M = new_matrix();
   double* values = M.valuePtr();
   const int bd = pattern_->block_dim();
-  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
-    constexpr int N = decltype(n)::value;
-    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
-      gather(mesh_, mesh_.nodes.data(), e, ws);
-      const int nn = ws.nodes();
-      // Built once per simulation, so the dynamic-size case may allocate here.
-      Eigen::Matrix<double, N, N> Me;
-      element_mass(rule, tab, density, ws, Me);
-      const int* map = pattern_->element_map(e);
-      for (int i = 0; i < nn; ++i)
-        for (int j = 0; j < nn; ++j)
-          for (int a = 0; a < 3; ++a)
-            if (const int pos = map[(3 * i + a) * bd + 3 * j + a]; pos >= 0) values[pos] += Me(i, j);
-    });
+  for_each_element_mass(mesh_, *pattern_, density, degree, [&](int e, const auto& Me) {
+    const int* map = pattern_->element_map(e);
+    for (int i = 0; i < Me.rows(); ++i)
+      for (int j = 0; j < Me.cols(); ++j)
+        for (int a = 0; a < 3; ++a)
+          if (const int pos = map[(3 * i + a) * bd + 3 * j + a]; pos >= 0) values[pos] += Me(i, j);
   });
   return M;
 }
 
 Eigen::VectorXd Assembler::lumped_mass(double density, int degree, MassLumping lumping) const {
-  const QuadratureRule& rule = quadrature_rule(mesh_.cell, degree);
-  const BasisTabulation& tab = cached_tabulation(mesh_.cell, mesh_.order, degree);
   Eigen::VectorXd m = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
-  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
-    constexpr int N = decltype(n)::value;
-    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
-      gather(mesh_, mesh_.nodes.data(), e, ws);
-      const int nn = ws.nodes();
-      Eigen::Matrix<double, N, N> Me;
-      element_mass(rule, tab, density, ws, Me);
-      Eigen::Matrix<double, N, 1> me(nn);
-      if (lumping == MassLumping::RowSum) {
-        me = Me.rowwise().sum();
-      } else {
-        // Hinton, Rock & Zienkiewicz (1976): the consistent diagonal scaled to
-        // the element's mass. Positive for every order, where row sums are not
-        // (Tet10 vertices get -m_e/20, Hex20 corners -m_e/12).
-        me = Me.diagonal() * (Me.sum() / Me.trace());
-      }
-      // Colours make the nodes of concurrently processed elements disjoint.
-      for (int i = 0; i < nn; ++i) m.segment<3>(3 * mesh_.elements(i, e)).array() += me[i];
-    });
+  for_each_element_mass(mesh_, *pattern_, density, degree, [&](int e, const auto& Me) {
+    // Row sums, or Hinton, Rock & Zienkiewicz (1976): the consistent diagonal
+    // scaled to the element's mass. HRZ is positive for every order, where row
+    // sums are not (Tet10 vertices get -m_e/20, Hex20 corners -m_e/12).
+    const double hrz = Me.sum() / Me.trace();
+    // Colours make the nodes of concurrently processed elements disjoint.
+    for (int i = 0; i < Me.rows(); ++i)
+      m.segment<3>(3 * mesh_.elements(i, e)).array() += lumping == MassLumping::RowSum ? Me.row(i).sum() : hrz * Me(i, i);
   });
   return m;
 }
 
 Eigen::VectorXd Assembler::mass_action(double density, int degree, const Eigen::VectorXd& r) const {
   check_size(r, mesh_);
-  const QuadratureRule& rule = quadrature_rule(mesh_.cell, degree);
-  const BasisTabulation& tab = cached_tabulation(mesh_.cell, mesh_.order, degree);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
-  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
-    constexpr int N = decltype(n)::value;
-    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
-      gather(mesh_, mesh_.nodes.data(), e, ws);
-      const int nn = ws.nodes();
-      Eigen::Matrix<double, N, N> Me;
-      element_mass(rule, tab, density, ws, Me);
-      for (int i = 0; i < nn; ++i)
-        for (int j = 0; j < nn; ++j)
-          y.segment<3>(3 * mesh_.elements(i, e)) += Me(i, j) * r.segment<3>(3 * mesh_.elements(j, e));
-    });
+  for_each_element_mass(mesh_, *pattern_, density, degree, [&](int e, const auto& Me) {
+    for (int i = 0; i < Me.rows(); ++i)
+      for (int j = 0; j < Me.cols(); ++j)
+        y.segment<3>(3 * mesh_.elements(i, e)) += Me(i, j) * r.segment<3>(3 * mesh_.elements(j, e));
   });
   return y;
 }
