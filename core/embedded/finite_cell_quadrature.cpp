@@ -1,9 +1,11 @@
 #include "embedded/finite_cell_quadrature.hpp"
 
 #include "embedded/embedded_quadrature.hpp"
+#include "quadrature/rule_library.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -42,6 +44,49 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
         make_element_quadrature(CellType::Hexahedron, background.order, std::move(xi), std::move(w)));
   }
   return out;
+}
+
+StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& cells,
+                                       const FiniteCellStabilisation& options) {
+  if (!(options.drop_fraction >= 0.0 && options.drop_fraction < 1.0) || !(options.stabilisation >= 0.0))
+    throw std::invalid_argument("stabilise_finite_cells: needs 0 <= drop_fraction < 1 and stabilisation >= 0");
+  if (cells.rules.size() != static_cast<size_t>(background.num_elements()))
+    throw std::invalid_argument("stabilise_finite_cells: the rules are not those of this background mesh");
+  const QuadratureRule& gauss = quadrature_rule(
+      CellType::Hexahedron, options.gauss_degree >= 0 ? options.gauss_degree : 2 * background.order);
+  StabilisedCells out;
+  const Eigen::MatrixXd no_points(3, 0);
+  for (int e = 0; e < background.num_elements(); ++e) {
+    const double f = cells.volume_fraction[e];
+    if (f <= 0.0 || f >= 1.0 - 1e-12) continue;  // empty or uncut
+    if (f < options.drop_fraction) {
+      cells.rules[e] = std::make_shared<const ElementQuadrature>(
+          make_element_quadrature(CellType::Hexahedron, background.order, no_points, Eigen::VectorXd()));
+      out.dropped.push_back(e);
+      continue;
+    }
+    if (options.stabilisation == 0.0) continue;
+    const QuadratureRule& cut = cells.rules[e]->rule;
+    Eigen::MatrixXd points(3, cut.size() + gauss.size());
+    Eigen::VectorXd weights(cut.size() + gauss.size());
+    points << cut.points, gauss.points;
+    weights << cut.weights, options.stabilisation * gauss.weights;
+    cells.rules[e] = std::make_shared<const ElementQuadrature>(
+        make_element_quadrature(CellType::Hexahedron, background.order, std::move(points), std::move(weights)));
+    out.stabilised.push_back(e);
+  }
+  return out;
+}
+
+std::vector<int> active_nodes(const Mesh& background, const CellQuadrature& cells) {
+  std::vector<char> used(background.num_nodes(), 0);
+  for (int e = 0; e < background.num_elements(); ++e)
+    if (cells.rules[e] && cells.rules[e]->rule.size() > 0)
+      for (int i = 0; i < background.nodes_per_element(); ++i) used[background.elements(i, e)] = 1;
+  std::vector<int> nodes;
+  for (int n = 0; n < background.num_nodes(); ++n)
+    if (used[n]) nodes.push_back(n);
+  return nodes;
 }
 
 }  // namespace hofem

@@ -6,6 +6,7 @@
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -69,6 +70,61 @@ TEST(FiniteCell, PartlyCoveredGridIntegratesTheGeometryOnly) {
   // Tetrahedral backgrounds are not a box grid.
   EXPECT_THROW(finite_cell_quadrature(box_mesh(unit_cube(1), CellType::Tetrahedron, 1), mesh_tetrahedra(geometry), 2),
                std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace hofem
+
+namespace hofem {
+namespace {
+
+// Second seed §5.3: a sliver cell (fraction below 1e-4) is dropped, and its
+// outer nodes leave the system.
+TEST(FiniteCell, StabilisationDropsSlivers) {
+  const Mesh background = box_mesh(BoxSpec{{0, 0, 0}, {2, 1, 1}, {2, 1, 1}}, CellType::Hexahedron, 1);
+  // Geometry: all of cell 0 and a 2e-5 sliver of cell 1 (x in [1, 1.00002]).
+  const Mesh geometry = box_mesh(BoxSpec{{0, 0, 0}, {1.00002, 1, 1}, {2, 2, 2}}, CellType::Tetrahedron, 1);
+  CellQuadrature fc = finite_cell_quadrature(background, mesh_tetrahedra(geometry), 2);
+  const int sliver = fc.volume_fraction[0] < fc.volume_fraction[1] ? 0 : 1;
+  EXPECT_NEAR(fc.volume_fraction[sliver], 2e-5, 1e-12);
+  const StabilisedCells s = stabilise_finite_cells(background, fc);
+  ASSERT_EQ(s.dropped, std::vector<int>{sliver});
+  EXPECT_TRUE(s.stabilised.empty());
+  EXPECT_EQ(fc.rules[sliver]->rule.size(), 0);
+  EXPECT_EQ(active_nodes(background, fc).size(), 8u);  // the sliver's 4 outer nodes carry nothing
+}
+
+// The scaled Gauss points make a cut cell's stiffness K_cut + a K_full, so by
+// Weyl's inequality its smallest non-rigid eigenvalue (the 7th; 6 rigid modes)
+// is at least a = 1e-6 times the full cell's, however small the cut: without
+// them a cell cut to 3e-4 near one face is far below that. The volume grows by
+// exactly a of the cell.
+TEST(FiniteCell, StabilisationBoundsTheCutCellStiffnessFromBelow) {
+  const Mesh cell = box_mesh(unit_cube(1), CellType::Hexahedron, 1);
+  const Mesh geometry = box_mesh(BoxSpec{{0, 0, 0}, {3e-4, 1, 1}, {1, 2, 2}}, CellType::Tetrahedron, 1);
+  const DofMap dofs(cell.num_nodes(), {});
+  const auto mat = make_material("linear", LameParameters::from_young_poisson(1.0, 0.3));
+  const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(cell.nodes.data(), 3 * cell.num_nodes());
+  auto seventh_eigenvalue = [&](const CellQuadrature* fc, double* volume) {
+    Assembler a(cell, dofs);
+    if (fc) a.set_element_quadrature(fc->rules);
+    SparseMatrix K = a.new_matrix();
+    Eigen::VectorXd g;
+    a.hessian(*mat, x, g, K, false);
+    if (volume) *volume = a.element_volumes()[0];
+    return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(K)).eigenvalues()[6];
+  };
+  const double full = seventh_eigenvalue(nullptr, nullptr);
+  CellQuadrature fc = finite_cell_quadrature(cell, mesh_tetrahedra(geometry), 2);
+  double volume = 0.0;
+  const double bare = seventh_eigenvalue(&fc, &volume);
+  EXPECT_NEAR(volume, 3e-4, 1e-15);
+  EXPECT_LT(bare, 1e-6 * full) << "the test needs a cut that is weaker than the stabilisation";
+  const StabilisedCells s = stabilise_finite_cells(cell, fc);
+  ASSERT_EQ(s.stabilised, std::vector<int>{0});
+  const double stabilised = seventh_eigenvalue(&fc, &volume);
+  EXPECT_NEAR(volume, 3e-4 + 1e-6, 1e-15);
+  EXPECT_GE(stabilised, 1e-6 * full * (1.0 - 1e-9));
 }
 
 }  // namespace
