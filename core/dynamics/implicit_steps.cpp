@@ -116,10 +116,18 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
     if (K_n_) g += s_.options_.rayleigh_beta / h * (*K_n_ * y);
     return g;
   }
-  double floor_energy() const { return s_.options_.floor ? s_.options_.floor->energy(x_) : 0.0; }
+  // Each pass over the nodes for the floor term counts as one floor evaluation.
+  double floor_energy() const {
+    if (!s_.options_.floor) return 0.0;
+    ++s_.stats_.floor_evaluations;
+    return s_.options_.floor->energy(x_);
+  }
   Eigen::VectorXd floor_forces() const {
     Eigen::VectorXd f = Eigen::VectorXd::Zero(x_.size());
-    if (s_.options_.floor) s_.options_.floor->add_forces(x_, f);
+    if (s_.options_.floor) {
+      ++s_.stats_.floor_evaluations;
+      s_.options_.floor->add_forces(x_, f);
+    }
     return f;
   }
 
