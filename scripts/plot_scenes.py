@@ -13,6 +13,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def save(fig, out, name, dpi):
+    """Lays out, writes and closes the figure; returns its path."""
+    fig.tight_layout()
+    path = os.path.join(out, name)
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
+    return path
+
+
 def load(directory):
     runs = {}
     root = os.path.join(directory, "scenes")
@@ -47,11 +56,7 @@ def plot_drop(runs, out):
     for a in ax:
         a.grid(alpha=0.3)
         a.legend(fontsize=8)
-    fig.tight_layout()
-    path = os.path.join(out, "scene_drop.png")
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, out, "scene_drop.png", 120)
 
 
 def plot_energies(runs, out):
@@ -73,11 +78,7 @@ def plot_energies(runs, out):
         ax.legend(fontsize=7)
     for ax in list(axes.flat)[len(names):]:
         ax.axis("off")
-    fig.tight_layout()
-    path = os.path.join(out, "scene_energies.png")
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save(fig, out, "scene_energies.png", 110)
 
 
 def plot_iterations(runs, out):
@@ -94,11 +95,7 @@ def plot_iterations(runs, out):
     ax.set(xlabel="t [s]", ylabel="iterations per time step", title="Solver work per step")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    path = os.path.join(out, "scene_iterations.png")
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save(fig, out, "scene_iterations.png", 120)
 
 
 def summary(runs):

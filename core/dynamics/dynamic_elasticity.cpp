@@ -118,10 +118,9 @@ void DynamicElasticity::ensure_linear_solver() {
 }
 
 void DynamicElasticity::set_velocity(const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& v) {
-  for (int i = 0; i < mesh_.num_nodes(); ++i) v_.segment<3>(3 * i) = v(mesh_.nodes.col(i));
-  impose_motion(t_, x_, &v_);
-  a_valid_ = false;
-  energy_reference_ = -1.0;
+  Eigen::VectorXd values(v_.size());
+  for (int i = 0; i < mesh_.num_nodes(); ++i) values.segment<3>(3 * i) = v(mesh_.nodes.col(i));
+  set_velocities(values);
 }
 
 void DynamicElasticity::set_velocities(const Eigen::VectorXd& v) {
@@ -155,7 +154,7 @@ Eigen::VectorXd DynamicElasticity::displacement() const {
   return x_ - Eigen::Map<const Eigen::VectorXd>(mesh_.nodes.data(), 3 * mesh_.num_nodes());
 }
 
-Eigen::VectorXd DynamicElasticity::mass_times(const Eigen::VectorXd& r) {
+Eigen::VectorXd DynamicElasticity::mass_times(const Eigen::VectorXd& r) const {
   if (mass_kind_ == MassKind::Lumped) return lumped_.cwiseProduct(r);
   return assembler_->mass_action(options_.density, mass_degree_, r);
 }
@@ -177,20 +176,20 @@ Energies DynamicElasticity::energies() {
 }
 
 Eigen::Vector3d DynamicElasticity::linear_momentum() const {
-  const Eigen::VectorXd p = const_cast<DynamicElasticity*>(this)->mass_times(v_);
+  const Eigen::VectorXd p = mass_times(v_);
   Eigen::Vector3d P = Eigen::Vector3d::Zero();
   for (int i = 0; i < mesh_.num_nodes(); ++i) P += p.segment<3>(3 * i);
   return P;
 }
 
 Eigen::Vector3d DynamicElasticity::angular_momentum() const {
-  const Eigen::VectorXd p = const_cast<DynamicElasticity*>(this)->mass_times(v_);
+  const Eigen::VectorXd p = mass_times(v_);
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
   for (int i = 0; i < mesh_.num_nodes(); ++i) L += x_.segment<3>(3 * i).cross(p.segment<3>(3 * i));
   return L;
 }
 
-double DynamicElasticity::kinetic_energy() {
+double DynamicElasticity::kinetic_energy() const {
   return 0.5 * v_.dot(mass_times(v_));
 }
 

@@ -134,12 +134,12 @@ class DynamicElasticity {
   class IncrementalPotential;
   // Forces and accelerations (dynamics_forces.cpp).
   Eigen::VectorXd internal_forces(const Eigen::VectorXd& x);
-  Eigen::VectorXd forces(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
+  Eigen::VectorXd forces(const Eigen::VectorXd& x, const Eigen::VectorXd& v);
   Eigen::VectorXd accelerations(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
-  Eigen::VectorXd mass_times(const Eigen::VectorXd& r);
+  Eigen::VectorXd mass_times(const Eigen::VectorXd& r) const;
   Eigen::VectorXd stiffness_times(const Eigen::VectorXd& x, const Eigen::VectorXd& w);
   void impose_motion(double t, Eigen::VectorXd& x, Eigen::VectorXd* v) const;
-  double kinetic_energy();
+  double kinetic_energy() const;
   // Integrators.
   void step_explicit_euler();
   void step_symplectic_euler();

@@ -32,8 +32,7 @@ Eigen::VectorXd DynamicElasticity::stiffness_times(const Eigen::VectorXd& x, con
 }
 
 // f = f_int(x) + rho g + floor - (alpha M + beta K) v, all DOFs.
-Eigen::VectorXd DynamicElasticity::forces(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
-  (void)t;
+Eigen::VectorXd DynamicElasticity::forces(const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
   Eigen::VectorXd f = internal_forces(x) + f_gravity_;
   if (options_.floor) {
     ++stats_.floor_evaluations;
@@ -46,7 +45,7 @@ Eigen::VectorXd DynamicElasticity::forces(double t, const Eigen::VectorXd& x, co
 
 // a_f = M_ff^-1 (f_f - M_fp a_p); prescribed entries get the motion's acceleration.
 Eigen::VectorXd DynamicElasticity::accelerations(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
-  Eigen::VectorXd f = forces(t, x, v);
+  Eigen::VectorXd f = forces(x, v);
   Eigen::VectorXd a_p = Eigen::VectorXd::Zero(x.size());
   for (const PrescribedMotion& m : motions_)
     if (m.acceleration)

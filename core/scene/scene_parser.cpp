@@ -97,6 +97,11 @@ class Field {
 void parse_mesh(const Field& m, Scene& s) {
   m.keys({"box", "tube", "file", "cell", "order"});
   if (m.has("box") + m.has("file") + m.has("tube") != 1) m.fail("needs exactly one of 'box', 'tube' and 'file'");
+  // The generators take a cell type; a .msh file brings its own.
+  if (m.has("cell")) {
+    if (m.has("file")) m.at("cell").fail("is given by the .msh file; remove it");
+    s.cell = m.at("cell").choice({"tet", "hex"}) == "hex" ? CellType::Hexahedron : CellType::Tetrahedron;
+  }
   if (m.has("tube")) {
     const Field t = m.at("tube");
     t.keys({"r_in", "r_out", "height", "cells"});
@@ -107,8 +112,6 @@ void parse_mesh(const Field& m, Scene& s) {
     const Field c = t.at("cells");
     if (!c.raw().is_array() || c.raw().size() != 3) c.fail("must be an array of 3 integers (radial, around, along z)");
     s.box_cells << c.item(0).integer(1, 1000), c.item(1).integer(3, 10000), c.item(2).integer(1, 1000);
-    s.cell = m.has("cell") ? (m.at("cell").choice({"tet", "hex"}) == "hex" ? CellType::Hexahedron : CellType::Tetrahedron)
-                           : CellType::Tetrahedron;
   } else if (m.has("box")) {
     const Field b = m.at("box");
     b.keys({"min", "max", "cells"});
@@ -118,11 +121,8 @@ void parse_mesh(const Field& m, Scene& s) {
     const Field c = b.at("cells");
     if (!c.raw().is_array() || c.raw().size() != 3) c.fail("must be an array of 3 integers");
     for (int i = 0; i < 3; ++i) s.box_cells[i] = c.item(i).integer(1, 1000);
-    s.cell = m.has("cell") ? (m.at("cell").choice({"tet", "hex"}) == "hex" ? CellType::Hexahedron : CellType::Tetrahedron)
-                           : CellType::Tetrahedron;
   } else {
     s.mesh_file = m.at("file").string();
-    if (m.has("cell")) m.at("cell").fail("is given by the .msh file; remove it");
     // Relative paths are relative to the scene file.
     if (!s.mesh_file.empty() && std::filesystem::path(s.mesh_file).is_relative() && !s.file.empty())
       s.mesh_file = (std::filesystem::path(s.file).parent_path() / s.mesh_file).string();
