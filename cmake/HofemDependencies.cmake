@@ -55,6 +55,18 @@ target_link_libraries(hofem::suitesparse INTERFACE
   ${CHOLMOD_LIBRARY} ${UMFPACK_LIBRARY} ${AMD_LIBRARY} ${COLAMD_LIBRARY}
   ${SUITESPARSE_CONFIG_LIBRARY} ${OPENBLAS_LIBRARY})
 
+# GLPK 5.0: the simplex solver of the LP quadrature simplification (second seed §4.4).
+find_path(GLPK_INCLUDE_DIR glpk.h)
+find_library(GLPK_LIBRARY glpk)
+set(_glpk_ok FALSE)
+if(GLPK_INCLUDE_DIR AND GLPK_LIBRARY)
+  set(_glpk_ok TRUE)
+endif()
+hofem_require(_glpk_ok "GLPK" "libglpk-dev")
+add_library(hofem::glpk INTERFACE IMPORTED)
+target_include_directories(hofem::glpk INTERFACE ${GLPK_INCLUDE_DIR})
+target_link_libraries(hofem::glpk INTERFACE ${GLPK_LIBRARY})
+
 # hypre 2.26 in Debian: no CMake config either.
 find_path(HYPRE_INCLUDE_DIR HYPRE.h PATH_SUFFIXES hypre)
 find_library(HYPRE_LIBRARY HYPRE)

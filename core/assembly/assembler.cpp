@@ -97,15 +97,48 @@ Assembler::Assembler(const Mesh& mesh, const DofMap& dofs, int quadrature_degree
   pattern_ = std::make_unique<SparsityPattern>(mesh, dofs);
 }
 
-void Assembler::set_element_quadrature(std::vector<std::shared_ptr<const ElementQuadrature>> per_element) {
-  if (!per_element.empty() && static_cast<int>(per_element.size()) != mesh_.num_elements())
-    throw std::invalid_argument(fmt::format("Assembler: {} element rules for {} elements", per_element.size(),
-                                            mesh_.num_elements()));
+namespace {
+void check_rules(const Mesh& mesh, const ElementQuadratureList& per_element, const char* what) {
+  if (!per_element.empty() && static_cast<int>(per_element.size()) != mesh.num_elements())
+    throw std::invalid_argument(fmt::format("Assembler: {} element {} rules for {} elements", per_element.size(), what,
+                                            mesh.num_elements()));
   for (size_t e = 0; e < per_element.size(); ++e)
-    if (per_element[e] && (per_element[e]->rule.cell != mesh_.cell ||
-                           per_element[e]->tabulation.num_basis != mesh_.nodes_per_element()))
-      throw std::invalid_argument(fmt::format("Assembler: the rule of element {} is for another cell or basis", e));
+    if (per_element[e] && (per_element[e]->rule.cell != mesh.cell ||
+                           per_element[e]->tabulation.num_basis != mesh.nodes_per_element()))
+      throw std::invalid_argument(fmt::format("Assembler: the {} rule of element {} is for another cell or basis", what, e));
+}
+}  // namespace
+
+void Assembler::set_element_quadrature(ElementQuadratureList per_element) {
+  check_rules(mesh_, per_element, "stiffness");
   element_quadrature_ = std::move(per_element);
+}
+
+void Assembler::set_element_mass_quadrature(ElementQuadratureList per_element) {
+  check_rules(mesh_, per_element, "mass");
+  mass_quadrature_ = std::move(per_element);
+}
+
+void Assembler::set_element_rules(const ElementRules& rules) {
+  check_rules(mesh_, rules.stiffness, "stiffness");
+  check_rules(mesh_, rules.mass, "mass");
+  element_quadrature_ = rules.stiffness;
+  mass_quadrature_ = rules.mass;
+}
+
+std::vector<int> unsupported_nodes(const Mesh& mesh, const ElementRules& rules) {
+  if (rules.empty()) return {};
+  auto contributes = [](const ElementQuadratureList& list, int e) {
+    return list.empty() || !list[e] || list[e]->rule.size() > 0;
+  };
+  std::vector<char> used(mesh.num_nodes(), 0);
+  for (int e = 0; e < mesh.num_elements(); ++e)
+    if (contributes(rules.stiffness, e) || contributes(rules.mass, e))
+      for (int i = 0; i < mesh.nodes_per_element(); ++i) used[mesh.elements(i, e)] = 1;
+  std::vector<int> nodes;
+  for (int n = 0; n < mesh.num_nodes(); ++n)
+    if (!used[n]) nodes.push_back(n);
+  return nodes;
 }
 
 namespace {
@@ -195,12 +228,15 @@ double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::
 
 Eigen::VectorXd Assembler::body_force_vector(const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& f,
                                              int degree) const {
-  const QuadratureRule& rule = quadrature_rule(mesh_.cell, degree);
-  const BasisTabulation& tab = cached_tabulation(mesh_.cell, mesh_.order, degree);
+  const QuadratureRule& standard_rule = quadrature_rule(mesh_.cell, degree);
+  const BasisTabulation& standard_tab = cached_tabulation(mesh_.cell, mesh_.order, degree);
   Eigen::VectorXd b = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
   dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
     constexpr int N = decltype(n)::value;
     for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      const bool own = !mass_quadrature_.empty() && mass_quadrature_[e];  // a cut cell's load rule
+      const QuadratureRule& rule = own ? mass_quadrature_[e]->rule : standard_rule;
+      const BasisTabulation& tab = own ? mass_quadrature_[e]->tabulation : standard_tab;
       gather(mesh_, mesh_.nodes.data(), e, ws);
       for (int q = 0; q < rule.size(); ++q) {
         const double wq = reference_gradients(tab, rule.weights, q, ws);
@@ -227,14 +263,19 @@ void element_mass(const QuadratureRule& rule, const BasisTabulation& tab, double
 }
 
 // Runs body(e, Me) with the element mass matrix of every element (rule of the
-// given degree), in parallel by colour like the other assemblies.
+// given degree, or the element's own mass rule), in parallel by colour like the
+// other assemblies.
 template <class Body>
-void for_each_element_mass(const Mesh& mesh, const SparsityPattern& pattern, double density, int degree, Body&& body) {
-  const QuadratureRule& rule = quadrature_rule(mesh.cell, degree);
-  const BasisTabulation& tab = cached_tabulation(mesh.cell, mesh.order, degree);
+void for_each_element_mass(const Mesh& mesh, const SparsityPattern& pattern, const ElementQuadratureList& per_element,
+                           double density, int degree, Body&& body) {
+  const QuadratureRule& standard_rule = quadrature_rule(mesh.cell, degree);
+  const BasisTabulation& standard_tab = cached_tabulation(mesh.cell, mesh.order, degree);
   dispatch_nodes(mesh.nodes_per_element(), [&](auto n) {
     constexpr int N = decltype(n)::value;
     for_each_element<N>(mesh, pattern, [&](ElementWorkspace<N>& ws, int e) {
+      const bool own = !per_element.empty() && per_element[e];
+      const QuadratureRule& rule = own ? per_element[e]->rule : standard_rule;
+      const BasisTabulation& tab = own ? per_element[e]->tabulation : standard_tab;
       gather(mesh, mesh.nodes.data(), e, ws);
       // Built once per simulation (or per mass action), so the dynamic-size case may allocate here.
       Eigen::Matrix<double, N, N> Me;
@@ -248,7 +289,7 @@ SparseMatrix Assembler::mass_matrix(double density, int degree) const {
   SparseMatrix M = new_matrix();
   double* values = M.valuePtr();
   const int bd = pattern_->block_dim();
-  for_each_element_mass(mesh_, *pattern_, density, degree, [&](int e, const auto& Me) {
+  for_each_element_mass(mesh_, *pattern_, mass_quadrature_, density, degree, [&](int e, const auto& Me) {
     const int* map = pattern_->element_map(e);
     for (int i = 0; i < Me.rows(); ++i)
       for (int j = 0; j < Me.cols(); ++j)
@@ -260,10 +301,11 @@ SparseMatrix Assembler::mass_matrix(double density, int degree) const {
 
 Eigen::VectorXd Assembler::lumped_mass(double density, int degree, MassLumping lumping) const {
   Eigen::VectorXd m = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
-  for_each_element_mass(mesh_, *pattern_, density, degree, [&](int e, const auto& Me) {
+  for_each_element_mass(mesh_, *pattern_, mass_quadrature_, density, degree, [&](int e, const auto& Me) {
     // Row sums, or Hinton, Rock & Zienkiewicz (1976): the consistent diagonal
     // scaled to the element's mass. HRZ is positive for every order, where row
     // sums are not (Tet10 vertices get -m_e/20, Hex20 corners -m_e/12).
+    if (Me.trace() <= 0.0) return;  // an element with an empty (cut-cell) rule: no mass
     const double hrz = Me.sum() / Me.trace();
     // Colours make the nodes of concurrently processed elements disjoint.
     for (int i = 0; i < Me.rows(); ++i)
@@ -275,7 +317,7 @@ Eigen::VectorXd Assembler::lumped_mass(double density, int degree, MassLumping l
 Eigen::VectorXd Assembler::mass_action(double density, int degree, const Eigen::VectorXd& r) const {
   check_size(r, mesh_);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
-  for_each_element_mass(mesh_, *pattern_, density, degree, [&](int e, const auto& Me) {
+  for_each_element_mass(mesh_, *pattern_, mass_quadrature_, density, degree, [&](int e, const auto& Me) {
     for (int i = 0; i < Me.rows(); ++i)
       for (int j = 0; j < Me.cols(); ++j)
         y.segment<3>(3 * mesh_.elements(i, e)) += Me(i, j) * r.segment<3>(3 * mesh_.elements(j, e));

@@ -12,6 +12,7 @@
 #include "assembly/sparse_matrix.hpp"
 #include "assembly/sparsity_pattern.hpp"
 #include "basis/basis_tabulation.hpp"
+#include "basis/element_rules.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
 #include "quadrature/quadrature_rule.hpp"
@@ -36,6 +37,11 @@ int default_quadrature_degree(CellType cell, int order, bool linear_material);
 /// Zienkiewicz 1976: the consistent diagonal scaled to keep each element's mass;
 /// positive for every order).
 enum class MassLumping { RowSum, HRZ };
+
+/// Nodes of no element that integrates anything (every element around them has
+/// empty stiffness and mass rules): they carry no stiffness or mass, so a
+/// problem constrains them (finite cells outside the embedded geometry).
+std::vector<int> unsupported_nodes(const Mesh& mesh, const ElementRules& rules);
 
 class Assembler {
  public:
@@ -65,8 +71,14 @@ class Assembler {
   /// gradient, Hessian and element volumes; null keeps the standard rule, an
   /// empty rule makes the element contribute nothing. Empty vector: all standard.
   /// Throws std::invalid_argument if the size or an entry's cell/basis does not match.
-  void set_element_quadrature(std::vector<std::shared_ptr<const ElementQuadrature>> per_element);
-  const std::vector<std::shared_ptr<const ElementQuadrature>>& element_quadrature() const { return element_quadrature_; }
+  void set_element_quadrature(ElementQuadratureList per_element);
+  const ElementQuadratureList& element_quadrature() const { return element_quadrature_; }
+  /// The same for mass matrices, lumped mass, mass actions and body loads (whose
+  /// `degree` argument then applies to the elements with null entries only).
+  void set_element_mass_quadrature(ElementQuadratureList per_element);
+  const ElementQuadratureList& element_mass_quadrature() const { return mass_quadrature_; }
+  /// Both families at once (finite_cell_quadrature's element_rules()).
+  void set_element_rules(const ElementRules& rules);
 
   /// A zero matrix with the free-DOF pattern.
   SparseMatrix new_matrix() const { return pattern_->zero_matrix(); }
@@ -90,7 +102,8 @@ class Assembler {
   const QuadratureRule* rule_;
   const BasisTabulation* tab_;
   std::unique_ptr<SparsityPattern> pattern_;
-  std::vector<std::shared_ptr<const ElementQuadrature>> element_quadrature_;
+  ElementQuadratureList element_quadrature_;
+  ElementQuadratureList mass_quadrature_;
   /// Tabulation and weights element e integrates with.
   const BasisTabulation& tabulation_of(int e) const {
     return element_quadrature_.empty() || !element_quadrature_[e] ? *tab_ : element_quadrature_[e]->tabulation;

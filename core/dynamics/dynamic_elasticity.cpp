@@ -18,7 +18,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-std::vector<int> constrained_nodes(const std::vector<PrescribedMotion>& motions, int num_nodes) {
+// The prescribed nodes, plus `unsupported` (finite cells: nodes no element
+// integrates anything for, held at rest).
+std::vector<int> constrained_nodes(const std::vector<PrescribedMotion>& motions, int num_nodes,
+                                   const std::vector<int>& unsupported) {
   std::set<int> seen;
   for (size_t k = 0; k < motions.size(); ++k)
     for (int n : motions[k].nodes) {
@@ -28,6 +31,7 @@ std::vector<int> constrained_nodes(const std::vector<PrescribedMotion>& motions,
       if (!seen.insert(n).second)
         throw std::invalid_argument(fmt::format("prescribed motion {}: node {} already has a prescribed motion", k, n));
     }
+  seen.insert(unsupported.begin(), unsupported.end());
   return {seen.begin(), seen.end()};
 }
 
@@ -41,7 +45,8 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
       material_(material),
       motions_(std::move(motions)),
       options_(std::move(options)),
-      dofs_(mesh.num_nodes(), constrained_nodes(motions_, mesh.num_nodes())) {
+      unsupported_(unsupported_nodes(mesh, options_.element_rules)),
+      dofs_(mesh.num_nodes(), constrained_nodes(motions_, mesh.num_nodes(), unsupported_)) {
   const DynamicsOptions& o = options_;
   if (!(o.dt > 0.0) || !std::isfinite(o.dt)) throw std::invalid_argument(fmt::format("dynamics: dt must be > 0 (got {})", o.dt));
   if (!(o.density > 0.0) || !std::isfinite(o.density))
@@ -61,14 +66,17 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
   // Consistent mass: N_i N_j has degree 2p on affine cells (2p per direction on hexes).
   mass_degree_ = 2 * mesh.order;
   assembler_ = std::make_unique<Assembler>(mesh_, dofs_, o.quadrature_degree);
+  assembler_->set_element_rules(o.element_rules);
   if (mass_kind_ == MassKind::Lumped) {
     lumped_ = assembler_->lumped_mass(o.density, mass_degree_, lumping_);
     stats_.mass = lumping_ == MassLumping::RowSum ? "lumped (row-sum)" : "lumped (HRZ)";
-    if (lumped_.minCoeff() <= 0.0)
+    // Over the free DOFs: unsupported finite-cell nodes (constrained) have none.
+    const double min_mass = dofs_.num_free() > 0 ? dofs_.restrict(lumped_).minCoeff() : 1.0;
+    if (min_mass <= 0.0)
       throw std::invalid_argument(fmt::format(
           "dynamics: {} lumping gives a non-positive nodal mass ({:.3e}) for order {}; use HRZ lumping or the "
           "consistent mass",
-          lumping_ == MassLumping::RowSum ? "row-sum" : "HRZ", lumped_.minCoeff(), mesh.order));
+          lumping_ == MassLumping::RowSum ? "row-sum" : "HRZ", min_mass, mesh.order));
   } else {
     stats_.mass = "consistent";
     ensure_consistent_mass();
@@ -206,7 +214,8 @@ double DynamicElasticity::estimate_stable_dt(int iterations) {
     for (int i : dofs_.constrained_dofs()) Kw[i] = 0.0;
     Eigen::VectorXd z;
     if (mass_kind_ == MassKind::Lumped) {
-      z = Kw.cwiseQuotient(lumped_);
+      z = Eigen::VectorXd::Zero(x_.size());  // unsupported finite-cell nodes have no mass
+      for (int i : dofs_.free_dofs()) z[i] = Kw[i] / lumped_[i];
     } else {  // explicit integrators with the consistent mass have its factor
       Eigen::VectorXd zf;
       mass_solver_->solve(dofs_.restrict(Kw), zf);
@@ -266,8 +275,9 @@ void DynamicElasticity::release_due_motions() {
     }
   if (!any) return;
   ++stats_.releases;
-  dofs_ = DofMap(mesh_.num_nodes(), constrained_nodes(motions_, mesh_.num_nodes()));
+  dofs_ = DofMap(mesh_.num_nodes(), constrained_nodes(motions_, mesh_.num_nodes(), unsupported_));
   assembler_ = std::make_unique<Assembler>(mesh_, dofs_, options_.quadrature_degree);
+  assembler_->set_element_rules(options_.element_rules);
   moving_boundary_ = false;
   for (const PrescribedMotion& m : motions_) moving_boundary_ = moving_boundary_ || (m.moves() && !m.nodes.empty());
   if (mass_kind_ == MassKind::Consistent) {

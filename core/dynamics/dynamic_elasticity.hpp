@@ -45,6 +45,9 @@ struct DynamicsOptions {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
   std::optional<Floor> floor;
   int quadrature_degree = -1;  ///< stiffness terms; < 0: default for order and material
+  /// Finite cell method: per-element stiffness and mass rules (finite_cell_quadrature's
+  /// element_rules()); nodes they leave without stiffness and mass are held at rest.
+  ElementRules element_rules;
   std::string linear_solver = "cholmod";
   NewtonOptions newton;
   /// Explicit runs stop as unstable when the mechanical energy exceeds this
@@ -159,6 +162,7 @@ class DynamicElasticity {
   MassKind mass_kind_;
   MassLumping lumping_;
   int mass_degree_;
+  std::vector<int> unsupported_;  ///< finite-cell nodes without stiffness or mass (held at rest)
   DofMap dofs_;
   std::unique_ptr<Assembler> assembler_;
   Eigen::VectorXd lumped_;        ///< lumped mass per DOF (lumped runs)

@@ -1,79 +1,235 @@
 #include "embedded/finite_cell_quadrature.hpp"
 
+#include "basis/reference_basis.hpp"
 #include "embedded/embedded_quadrature.hpp"
+#include "embedded/quadrature_simplification.hpp"
 #include "quadrature/rule_library.hpp"
 
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 namespace hofem {
 
-CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Tetrahedron> geometry, int degree) {
-  if (background.cell != CellType::Hexahedron)
-    throw std::invalid_argument("finite_cell_quadrature: the background must be a Hex8/Hex20 grid");
-  const TetBucketGrid grid(geometry);
-  CellQuadrature out;
-  out.rules.resize(background.num_elements());
-  out.volume_fraction.assign(background.num_elements(), 0.0);
-  for (int e = 0; e < background.num_elements(); ++e) {
-    Eigen::Matrix<double, 3, 8> corners;
-    for (int i = 0; i < 8; ++i) corners.col(i) = background.nodes.col(background.elements(i, e));
-    const Eigen::Vector3d lo = corners.rowwise().minCoeff(), hi = corners.rowwise().maxCoeff();
-    const Eigen::Vector3d size = hi - lo;
-    // Axis-aligned box: every corner sits on a corner of its bounding box.
-    for (int i = 0; i < 8; ++i)
-      for (int k = 0; k < 3; ++k)
-        if (std::min(std::abs(corners(k, i) - lo[k]), std::abs(corners(k, i) - hi[k])) > 1e-12 * size.norm())
-          throw std::invalid_argument(fmt::format(
-              "finite_cell_quadrature: element {} is not an axis-aligned box (non-affine cells are not supported)", e));
-    const PhysicalRule r = box_cell_rule(geometry, grid, lo, hi, degree);
-    out.points += r.size();
-    // x = lo + (xi + 1) / 2 * size  =>  xi = 2 (x - lo) / size - 1, dx = size.prod() / 8 dxi.
-    Eigen::MatrixXd xi(3, r.size());
-    Eigen::VectorXd w(r.size());
-    const double scale = 8.0 / size.prod();
-    for (int q = 0; q < r.size(); ++q) {
-      xi.col(q) = 2.0 * (r.points[q] - lo).cwiseQuotient(size) - Eigen::Vector3d::Ones();
-      w[q] = r.weights[q] * scale;
-    }
-    out.volume_fraction[e] = r.volume() / size.prod();
-    out.rules[e] = std::make_shared<const ElementQuadrature>(
-        make_element_quadrature(CellType::Hexahedron, background.order, std::move(xi), std::move(w)));
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Highest total degree of a monomial in the basis' space (Tet p, Hex8 3: xyz, Hex20 4: x^2yz).
+int highest_total_degree(CellType cell, int order) {
+  int d = 0;
+  for (const auto& a : lagrange_basis(cell, order).polynomial_space()) d = std::max(d, a[0] + a[1] + a[2]);
+  return d;
+}
+
+std::shared_ptr<const ElementQuadrature> make_rule(CellType cell, int order, Eigen::MatrixXd xi, Eigen::VectorXd w) {
+  return std::make_shared<const ElementQuadrature>(make_element_quadrature(cell, order, std::move(xi), std::move(w)));
+}
+
+std::shared_ptr<const ElementQuadrature> empty_rule(CellType cell, int order) {
+  return make_rule(cell, order, Eigen::MatrixXd(3, 0), Eigen::VectorXd());
+}
+
+}  // namespace
+
+AffineCell affine_cell(const Mesh& mesh, int e) {
+  // Least-squares fit of X = origin + A xi over all nodes, then every node must
+  // lie on it: this accepts straight-sided higher-order cells and parallelepipeds.
+  const Eigen::MatrixXd& ref = lagrange_basis(mesh.cell, mesh.order).nodes();
+  const int n = mesh.nodes_per_element();
+  Eigen::MatrixXd B(n, 4), X(n, 3);
+  for (int i = 0; i < n; ++i) {
+    B(i, 0) = 1.0;
+    B.block<1, 3>(i, 1) = ref.col(i).transpose();
+    X.row(i) = mesh.nodes.col(mesh.elements(i, e)).transpose();
   }
+  const Eigen::MatrixXd C = (B.transpose() * B).ldlt().solve(B.transpose() * X);  // 4 x 3
+  AffineCell map;
+  map.origin = C.row(0).transpose();
+  map.A = C.bottomRows(3).transpose();
+  const double size = (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
+  const double misfit = (B * C - X).cwiseAbs().maxCoeff();
+  if (!(misfit <= 1e-10 * size))
+    throw std::invalid_argument(fmt::format(
+        "finite cell: background element {} is not affine (node misfit {:.3g} of size {:.3g}); curved cells are not supported",
+        e, misfit, size));
+  const double det = map.A.determinant();
+  if (!(std::abs(det) > 1e-12 * std::pow(size, 3)))
+    throw std::invalid_argument(fmt::format("finite cell: background element {} is degenerate (det J = {:.3g})", e, det));
+  map.A_inverse = map.A.inverse();
+  return map;
+}
+
+std::vector<HalfSpace> cell_half_spaces(CellType cell, const AffineCell& map) {
+  // Reference inequality a . xi <= b becomes (A^-T a) . X <= b + (A^-T a) . origin.
+  std::vector<HalfSpace> h;
+  auto add = [&](const Eigen::Vector3d& a, double b) {
+    const Eigen::Vector3d n = map.A_inverse.transpose() * a;
+    h.push_back({n, b + n.dot(map.origin)});
+  };
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d ek = Eigen::Vector3d::Unit(k);
+    if (cell == CellType::Tetrahedron) {
+      add(-ek, 0.0);  // xi_k >= 0
+    } else {
+      add(ek, 1.0);
+      add(-ek, 1.0);
+    }
+  }
+  if (cell == CellType::Tetrahedron) add(Eigen::Vector3d::Ones(), 1.0);
+  return h;
+}
+
+CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Tetrahedron> geometry,
+                                      const FiniteCellOptions& options) {
+  if (background.cell != CellType::Tetrahedron && background.cell != CellType::Hexahedron)
+    throw std::invalid_argument("finite_cell_quadrature: the background must be a tetrahedral or hexahedral mesh");
+  const CellType cell = background.cell;
+  const int p = background.order, ne = background.num_elements();
+  CellQuadrature out;
+  const int highest = highest_total_degree(cell, p);
+  out.stiffness_degree = options.stiffness_degree >= 0      ? options.stiffness_degree
+                         : cell == CellType::Tetrahedron ? 2 * p
+                                                         : 2 * (highest - 1);
+  out.mass_degree = options.mass_degree >= 0 ? options.mass_degree : 2 * highest;
+  std::vector<AffineCell> maps;
+  maps.reserve(ne);
+  for (int e = 0; e < ne; ++e) maps.push_back(affine_cell(background, e));  // throws before any work
+
+  const auto t0 = Clock::now();
+  const TetBucketGrid grid(geometry);
+  out.rules.resize(ne);
+  out.mass_rules.resize(ne);
+  out.volume_fraction.assign(ne, 0.0);
+  out.points_before.assign(ne, 0);
+  out.points_after.assign(ne, 0);
+  std::vector<double> residual(ne, 0.0), lp_seconds(ne, 0.0), gen_seconds(ne, 0.0);
+  std::vector<char> failed(ne, 0);
+  const double reference_volume = cell == CellType::Tetrahedron ? 1.0 / 6.0 : 8.0;
+
+  // Cells are independent; dynamic schedule because cut cells cost far more.
+#pragma omp parallel for schedule(dynamic, 4)
+  for (int e = 0; e < ne; ++e) {
+    const auto tc = Clock::now();
+    const AffineCell& map = maps[e];
+    const std::vector<HalfSpace> planes = cell_half_spaces(cell, map);
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+    for (int i = 0; i < background.vertices_per_element(); ++i) {
+      lo = lo.cwiseMin(background.nodes.col(background.elements(i, e)));
+      hi = hi.cwiseMax(background.nodes.col(background.elements(i, e)));
+    }
+    const std::vector<int> candidates = grid.candidates(lo, hi);
+    const double jac = std::abs(map.A.determinant());
+    // Clipped rules of both strengths, in reference coordinates: w_ref = w / |det A| (eq. 11-12).
+    auto clipped = [&](int degree) {
+      PhysicalRule r;
+      for (int k : candidates) add_clipped_rule(geometry[k], planes, degree, r);
+      Eigen::MatrixXd xi(3, r.size());
+      Eigen::VectorXd w(r.size());
+      for (int q = 0; q < r.size(); ++q) {
+        xi.col(q) = map.reference(r.points[q]);
+        w[q] = r.weights[q] / jac;
+      }
+      return std::pair{std::move(xi), std::move(w)};
+    };
+    auto [xs, ws] = clipped(out.stiffness_degree);
+    const double fraction = ws.sum() / reference_volume;
+    out.volume_fraction[e] = fraction;
+    if (ws.size() == 0) {
+      out.rules[e] = out.mass_rules[e] = empty_rule(cell, p);
+      gen_seconds[e] = seconds_since(tc);
+      continue;
+    }
+    if (options.standard_rule_inside && fraction >= 1.0 - 1e-12) {  // uncut: standard rules (null)
+      gen_seconds[e] = seconds_since(tc);
+      continue;
+    }
+    auto [xm, wm] = clipped(out.mass_degree);
+    gen_seconds[e] = seconds_since(tc);
+    out.points_before[e] = static_cast<int>(ws.size());
+    const auto tl = Clock::now();
+    if (options.simplify) {
+      SimplifiedRule s = simplify_quadrature(xs, ws, out.stiffness_degree);
+      failed[e] = !s.simplified && s.points_before > s.basis_size;  // N <= M is returned as is, not a failure
+      residual[e] = s.moment_residual;
+      if (s.simplified) {
+        xs = std::move(s.points);
+        ws = std::move(s.weights);
+      }
+    }
+    if (options.simplify_mass) {
+      SimplifiedRule s = simplify_quadrature(xm, wm, out.mass_degree);
+      failed[e] = failed[e] || (!s.simplified && s.points_before > s.basis_size);
+      residual[e] = std::max(residual[e], s.moment_residual);
+      if (s.simplified) {
+        xm = std::move(s.points);
+        wm = std::move(s.weights);
+      }
+    }
+    lp_seconds[e] = seconds_since(tl);
+    out.points_after[e] = static_cast<int>(ws.size());
+    out.rules[e] = make_rule(cell, p, std::move(xs), std::move(ws));
+    out.mass_rules[e] = make_rule(cell, p, std::move(xm), std::move(wm));
+  }
+  for (int e = 0; e < ne; ++e) {
+    out.points += out.points_before[e];
+    out.simplified_points += out.points_after[e];
+    if (out.mass_rules[e]) out.mass_points += out.mass_rules[e]->rule.size();
+    out.simplification_failures += failed[e];
+    out.max_moment_residual = std::max(out.max_moment_residual, residual[e]);
+    out.simplification_seconds += lp_seconds[e];
+    out.generation_seconds += gen_seconds[e];
+  }
+  out.wall_seconds = seconds_since(t0);
   return out;
+}
+
+CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Tetrahedron> geometry, int degree) {
+  FiniteCellOptions o;
+  o.stiffness_degree = o.mass_degree = degree;
+  o.simplify = false;
+  o.standard_rule_inside = false;
+  return finite_cell_quadrature(background, geometry, o);
 }
 
 StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& cells,
                                        const FiniteCellStabilisation& options) {
   if (!(options.drop_fraction >= 0.0 && options.drop_fraction < 1.0) || !(options.stabilisation >= 0.0))
     throw std::invalid_argument("stabilise_finite_cells: needs 0 <= drop_fraction < 1 and stabilisation >= 0");
-  if (cells.rules.size() != static_cast<size_t>(background.num_elements()))
+  const size_t ne = background.num_elements();
+  if (cells.rules.size() != ne || cells.mass_rules.size() != ne || cells.volume_fraction.size() != ne)
     throw std::invalid_argument("stabilise_finite_cells: the rules are not those of this background mesh");
-  const QuadratureRule& gauss = quadrature_rule(
-      CellType::Hexahedron, options.gauss_degree >= 0 ? options.gauss_degree : 2 * background.order);
+  const CellType cell = background.cell;
+  const int p = background.order;
+  const QuadratureRule& gauss =
+      quadrature_rule(cell, options.gauss_degree >= 0 ? options.gauss_degree : 2 * background.order);
+  auto with_gauss = [&](const std::shared_ptr<const ElementQuadrature>& cut) {
+    const QuadratureRule& r = cut->rule;
+    Eigen::MatrixXd points(3, r.size() + gauss.size());
+    Eigen::VectorXd weights(r.size() + gauss.size());
+    points << r.points, gauss.points;
+    weights << r.weights, options.stabilisation * gauss.weights;
+    return make_rule(cell, p, std::move(points), std::move(weights));
+  };
   StabilisedCells out;
-  const Eigen::MatrixXd no_points(3, 0);
-  for (int e = 0; e < background.num_elements(); ++e) {
+  for (size_t e = 0; e < ne; ++e) {
     const double f = cells.volume_fraction[e];
-    if (f <= 0.0 || f >= 1.0 - 1e-12) continue;  // empty or uncut
+    if (f <= 0.0 || !cells.rules[e] || f >= 1.0 - 1e-12) continue;  // empty or uncut
     if (f < options.drop_fraction) {
-      cells.rules[e] = std::make_shared<const ElementQuadrature>(
-          make_element_quadrature(CellType::Hexahedron, background.order, no_points, Eigen::VectorXd()));
-      out.dropped.push_back(e);
+      cells.rules[e] = cells.mass_rules[e] = empty_rule(cell, p);
+      out.dropped.push_back(static_cast<int>(e));
       continue;
     }
     if (options.stabilisation == 0.0) continue;
-    const QuadratureRule& cut = cells.rules[e]->rule;
-    Eigen::MatrixXd points(3, cut.size() + gauss.size());
-    Eigen::VectorXd weights(cut.size() + gauss.size());
-    points << cut.points, gauss.points;
-    weights << cut.weights, options.stabilisation * gauss.weights;
-    cells.rules[e] = std::make_shared<const ElementQuadrature>(
-        make_element_quadrature(CellType::Hexahedron, background.order, std::move(points), std::move(weights)));
-    out.stabilised.push_back(e);
+    cells.rules[e] = with_gauss(cells.rules[e]);
+    if (cells.mass_rules[e]) cells.mass_rules[e] = with_gauss(cells.mass_rules[e]);
+    out.stabilised.push_back(static_cast<int>(e));
   }
   return out;
 }
@@ -81,7 +237,7 @@ StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& c
 std::vector<int> active_nodes(const Mesh& background, const CellQuadrature& cells) {
   std::vector<char> used(background.num_nodes(), 0);
   for (int e = 0; e < background.num_elements(); ++e)
-    if (cells.rules[e] && cells.rules[e]->rule.size() > 0)
+    if (!cells.rules[e] || cells.rules[e]->rule.size() > 0)  // null: an uncut cell's standard rule
       for (int i = 0; i < background.nodes_per_element(); ++i) used[background.elements(i, e)] = 1;
   std::vector<int> nodes;
   for (int n = 0; n < background.num_nodes(); ++n)

@@ -1,16 +1,37 @@
 #pragma once
-// Finite-cell quadrature (second seed §4.5): for every cell of a background mesh,
-// a rule of degree m over the part of the embedded geometry inside it, in the
-// cell's reference coordinates, ready for Assembler::set_element_quadrature.
+// Finite-cell quadrature (second seed §4.4-4.5, §5.3): for every cell of a
+// background mesh, rules over the part of the embedded geometry inside it, in
+// the cell's reference coordinates, ready for the Assembler (ElementRules, basis/element_rules.hpp).
 //
-// Background cells are the axis-aligned boxes of a structured Hex8/Hex20 grid
-// (box_mesh), whose map to [-1, 1]^3 is affine and diagonal, so the cell's planar
-// faces are its half-spaces and the map back to reference coordinates is exact.
-// Non-affine hexahedra would need their faces' planes of the undeformed reference
-// geometry or a subdivision into tets; they are refused (not built).
+// Background cells must be affine: Tet4, straight-sided Tet10 (and higher), and
+// parallelepiped Hex8/Hex20 (box grids, sheared or rotated). Their map
+// X = X0 + A xi is then exact, the cell is the intersection of the half-spaces
+// that pull back the reference cell's faces (xi_k >= 0, sum xi <= 1 on the tet,
+// |xi_k| <= 1 on the hex), and the map back to reference coordinates is A^-1
+// (the Newton inverse of §4.5 is needed only for curved cells, which are refused
+// with the element's index rather than integrated wrongly).
+//
+// Two rules per cell, as the seed does (§6 "Setup"):
+//  - stiffness: strength m, simplified by the LP of §4.4 to at most C(m+3, 3)
+//    positive-weight points chosen among the clipped rule's points. Default: the
+//    degree that integrates the linear-elastic integrand grad N_i . grad N_j of an
+//    affine cell exactly - 2(p-1) on tets, raised to 2p as our standard Tet10
+//    assembly does for nonlinear materials; 2 (d-1) on hexes, d the basis' highest
+//    total degree: 4 for Hex8, 6 for Hex20. The seed uses 2 for Hex8, 4 for Hex20
+//    and 3 for Tet10 (§6), which under-integrates the stiffness of cut hexes
+//    (total-degree rules cannot use the tensor structure of Gauss rules): we
+//    prefer exactness at the price of 35 instead of 10 (Hex8) and 84 instead of
+//    35 (Hex20) points per cut cell;
+//  - mass and body loads: a higher strength (default 2 x the basis' highest total
+//    degree: exact for N_i N_j on an affine cell), not simplified by default (the
+//    seed: "only needed once").
+// Uncut cells (volume fraction 1) keep the standard rules (null entries).
 #include "basis/basis_tabulation.hpp"
+#include "basis/element_rules.hpp"
 #include "embedded/tet_clipping.hpp"
 #include "mesh/mesh.hpp"
+
+#include <Eigen/Core>
 
 #include <memory>
 #include <span>
@@ -18,27 +39,67 @@
 
 namespace hofem {
 
-struct CellQuadrature {
-  /// Per element: its rule (empty where the geometry does not reach the cell).
-  std::vector<std::shared_ptr<const ElementQuadrature>> rules;
-  /// Per element: volume of (geometry ∩ cell) / volume of the cell.
-  std::vector<double> volume_fraction;
-  /// Quadrature points before any simplification, summed over cells.
-  long long points = 0;
+struct FiniteCellOptions {
+  int stiffness_degree = -1;    ///< < 0: tet 2p, hex 2 (d - 1) (Hex8 4, Hex20 6), see above
+  int mass_degree = -1;         ///< < 0: 2 x highest total degree of the basis (Tet p, Hex8 3, Hex20 4)
+  bool simplify = true;         ///< LP simplification (§4.4) of the stiffness rules
+  bool simplify_mass = false;   ///< ... and of the mass rules
+  /// Uncut cells get null rules (the Assembler's standard rules). false keeps
+  /// their clipped rules (tests that compare the two).
+  bool standard_rule_inside = true;
 };
 
-/// Throws std::invalid_argument for a background that is not a grid of
-/// axis-aligned Hex8/Hex20 boxes.
+/// The affine map of a background cell, X = origin + A xi.
+struct AffineCell {
+  Eigen::Vector3d origin;
+  Eigen::Matrix3d A;
+  Eigen::Matrix3d A_inverse;
+  Eigen::Vector3d reference(const Eigen::Vector3d& X) const { return A_inverse * (X - origin); }
+};
+/// Throws std::invalid_argument naming the element if its nodes are not an
+/// affine image of the reference element (to 1e-10 of its size) or A is singular.
+AffineCell affine_cell(const Mesh& mesh, int element);
+/// The half-spaces whose intersection is the cell (4 for a tet, 6 for a hex).
+std::vector<HalfSpace> cell_half_spaces(CellType cell, const AffineCell& map);
+
+struct CellQuadrature {
+  /// Per element: stiffness rule (null: the standard rule of an uncut cell;
+  /// empty: the geometry misses the cell or the cell was dropped).
+  std::vector<std::shared_ptr<const ElementQuadrature>> rules;
+  /// Per element: mass / load rule, same conventions.
+  std::vector<std::shared_ptr<const ElementQuadrature>> mass_rules;
+  /// Per element: volume of (geometry ∩ cell) / volume of the cell.
+  std::vector<double> volume_fraction;
+  /// Per element: stiffness points before and after simplification (0 for uncut and empty cells).
+  std::vector<int> points_before, points_after;
+  long long points = 0;             ///< stiffness points before simplification, summed over cut cells
+  long long simplified_points = 0;  ///< ... after
+  long long mass_points = 0;        ///< mass points over cut cells (after any simplification)
+  int simplification_failures = 0;  ///< cells whose LP failed (their clipped rule is kept)
+  double max_moment_residual = 0.0;
+  double generation_seconds = 0.0;      ///< clipping and mapping, summed over threads
+  double simplification_seconds = 0.0;  ///< the LPs, summed over threads
+  double wall_seconds = 0.0;            ///< the whole call
+  int stiffness_degree = 0, mass_degree = 0;
+
+  ElementRules element_rules() const { return {rules, mass_rules}; }
+};
+
+CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Tetrahedron> geometry,
+                                      const FiniteCellOptions& options = {});
+/// Stiffness and mass rules of one strength, clipped rules kept everywhere, no
+/// simplification (the raw §4.5 rules).
 CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Tetrahedron> geometry, int degree);
 
 /// Second seed §5.3, applied to the rules of finite_cell_quadrature:
 ///  - cells whose volume fraction is positive but below drop_fraction are
-///    dropped (their rule emptied; listed in `dropped`): a sliver's stiffness is
-///    too small to control its DOFs;
+///    dropped (their rules emptied; listed in `dropped`): a sliver's stiffness is
+///    too small to control its DOFs (its embedded points are extrapolated from the
+///    nearest kept cell, embedded_points.hpp);
 ///  - every other cut cell (fraction < 1) gets the standard Gauss points of the
-///    full cell with weights scaled by `stabilisation`, so that its stiffness
-///    stays positive definite however small the cut part is (the fictitious-domain
-///    stiffness of the finite cell method).
+///    full cell with weights scaled by `stabilisation`, in its stiffness and its
+///    mass rule, so that both stay positive definite however small the cut part
+///    is (the fictitious-domain stiffness of the finite cell method).
 struct FiniteCellStabilisation {
   double drop_fraction = 1e-4;
   double stabilisation = 1e-6;

@@ -218,12 +218,15 @@ void write_field_block(XmlFile& out, std::string_view tag, const std::vector<Vtu
 }  // namespace
 
 int vtk_cell_type(CellType cell, int order) {
+  // Linear triangles: embedded surfaces (finite cell output); VTK_TRIANGLE = 5,
+  // vertices in Gmsh's order (vtkTriangle).
+  if (cell == CellType::Triangle && order == 1) return 5;
   if (cell == CellType::Tetrahedron && order >= 1)
     return order == 1 ? kVtkTetra : order == 2 ? kVtkQuadraticTetra : kVtkLagrangeTetrahedron;
   if (cell == CellType::Hexahedron && (order == 1 || order == 2))
     return order == 1 ? kVtkHexahedron : kVtkQuadraticHexahedron;
   throw std::invalid_argument(
-      fmt::format("no VTK cell for {} of order {} (tet: order >= 1; hex: 1 or 2)", name(cell), order));
+      fmt::format("no VTK cell for {} of order {} (tet: order >= 1; hex: 1 or 2; triangle: 1)", name(cell), order));
 }
 
 std::vector<std::array<int, 3>> vtk_tetrahedron_lattice(int p) {
@@ -235,6 +238,7 @@ std::vector<std::array<int, 3>> vtk_tetrahedron_lattice(int p) {
 
 std::vector<int> gmsh_to_vtk_permutation(CellType cell, int order) {
   vtk_cell_type(cell, order);  // validates
+  if (cell == CellType::Triangle) return {0, 1, 2};
   if (cell == CellType::Hexahedron) return hex_permutation(order);
   // VTK_TETRA and VTK_QUADRATIC_TETRA number their points as the Lagrange
   // tetrahedron of order 1 and 2 does (vtkTetra, vtkQuadraticTetra.h), so one rule serves.

@@ -16,8 +16,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-std::vector<int> constrained_nodes(const std::vector<DirichletCondition>& bcs) {
-  std::vector<int> nodes;
+std::vector<int> constrained_nodes(const std::vector<DirichletCondition>& bcs, std::vector<int> unsupported) {
+  std::vector<int> nodes = std::move(unsupported);
   for (const auto& bc : bcs) nodes.insert(nodes.end(), bc.nodes.begin(), bc.nodes.end());
   return nodes;
 }
@@ -30,14 +30,21 @@ StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, s
       material_(material),
       dirichlet_(std::move(dirichlet)),
       options_(std::move(options)),
-      dofs_(mesh.num_nodes(), constrained_nodes(dirichlet_)) {
+      dofs_(mesh.num_nodes(), constrained_nodes(dirichlet_, unsupported_nodes(mesh, options_.element_rules))) {
   const auto t0 = Clock::now();
   validate_mesh(mesh);  // inverted / degenerate elements are rejected with their index
   assembler_ = std::make_unique<Assembler>(mesh, dofs_, options_.quadrature_degree);
+  assembler_->set_element_rules(options_.element_rules);
   solver_ = make_linear_solver(options_.linear_solver);
   solver_->set_discretization({&mesh_, &dofs_});
   const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * mesh.order + 2;
   f_ext_ = body_force ? assembler_->body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+  if (options_.external_load.size() > 0) {
+    if (options_.external_load.size() != f_ext_.size() || !options_.external_load.allFinite())
+      throw std::invalid_argument(fmt::format("static problem: external_load needs {} finite entries (got {})",
+                                              f_ext_.size(), options_.external_load.size()));
+    f_ext_ += options_.external_load;
+  }
   u_dirichlet_ = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
   for (const auto& bc : dirichlet_)
     if (bc.displacement)

@@ -32,6 +32,12 @@ struct StaticOptions {
   int load_degree = -1;        ///< body-force integration; < 0: 2p + 2
   std::string linear_solver = "cholmod";
   NewtonOptions newton;
+  /// Finite cell method: per-element stiffness and mass/load rules (finite_cell_quadrature's
+  /// element_rules()); nodes they leave without stiffness are fixed (zero displacement).
+  ElementRules element_rules;
+  /// Extra external load at full load factor, all 3 * num_nodes DOFs (e.g. surface
+  /// tractions integrated by the caller); empty = none.
+  Eigen::VectorXd external_load;
   int max_load_halvings = 6;   ///< a failed load step is halved at most this many times in a row
   /// Tangent predictor at each load step: u += -K^-1 (dg/dload) dload, with K at
   /// the last converged state. Without it the prescribed boundary displacement

@@ -4,7 +4,9 @@
 #include "embedded/embedded_quadrature.hpp"
 #include "embedded/finite_cell_quadrature.hpp"
 #include "material/material.hpp"
+#include "embedded/embedded_points.hpp"
 #include "mesh/box_mesh.hpp"
+#include "problem/static_elasticity.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
@@ -67,9 +69,15 @@ TEST(FiniteCell, PartlyCoveredGridIntegratesTheGeometryOnly) {
   EXPECT_GT(partial, 0);
   // A wrong-sized rule list is refused.
   EXPECT_THROW(cut.set_element_quadrature(std::vector<std::shared_ptr<const ElementQuadrature>>(3)), std::invalid_argument);
-  // Tetrahedral backgrounds are not a box grid.
-  EXPECT_THROW(finite_cell_quadrature(box_mesh(unit_cube(1), CellType::Tetrahedron, 1), mesh_tetrahedra(geometry), 2),
-               std::invalid_argument);
+  // A curved (non-affine) background cell is refused, naming the element.
+  Mesh curved = box_mesh(unit_cube(1), CellType::Tetrahedron, 2);
+  curved.nodes(0, curved.elements(4, 3)) += 0.05;  // bend an edge of element 3
+  try {
+    finite_cell_quadrature(curved, mesh_tetrahedra(geometry), 2);
+    ADD_FAILURE() << "a curved cell was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("is not affine"), std::string::npos) << e.what();  // element 2 or 3 (shared edge)
+  }
 }
 
 }  // namespace
@@ -125,6 +133,195 @@ TEST(FiniteCell, StabilisationBoundsTheCutCellStiffnessFromBelow) {
   const double stabilised = seventh_eigenvalue(&fc, &volume);
   EXPECT_NEAR(volume, 3e-4 + 1e-6, 1e-15);
   EXPECT_GE(stabilised, 1e-6 * full * (1.0 - 1e-9));
+}
+
+}  // namespace
+}  // namespace hofem
+
+namespace hofem {
+namespace {
+
+Eigen::VectorXd rest_positions(const Mesh& m) { return Eigen::Map<const Eigen::VectorXd>(m.nodes.data(), 3 * m.num_nodes()); }
+
+// Tetrahedral backgrounds (Tet4, straight Tet10): a fully covered grid gives the
+// standard assembly (degree 2p rules integrate the linear-elastic integrand,
+// of degree 2(p-1), exactly: 1e-12 relative, rounding of ~1e3-term sums).
+TEST(FiniteCell, TetBackgroundsReproduceTheStandardAssembly) {
+  for (int order : {1, 2}) {
+    const Mesh background = box_mesh(unit_cube(2), CellType::Tetrahedron, order);
+    const Mesh geometry_tets = box_mesh(unit_cube(3), CellType::Tetrahedron, 1);
+    FiniteCellOptions o;
+    o.standard_rule_inside = false;  // keep the clipped rules in every (uncut) cell
+    const CellQuadrature fc = finite_cell_quadrature(background, mesh_tetrahedra(geometry_tets), o);
+    for (double f : fc.volume_fraction) EXPECT_NEAR(f, 1.0, 1e-12);
+    const DofMap dofs(background.num_nodes(), background.node_set("xmin"));
+    const Assembler standard(background, dofs);
+    Assembler cut(background, dofs);
+    cut.set_element_rules(fc.element_rules());
+    const auto mat = make_material("linear", LameParameters::from_young_poisson(10.0, 0.3));
+    Eigen::VectorXd x = rest_positions(background);
+    for (Eigen::Index i = 0; i < x.size(); ++i) x[i] += 0.01 * std::sin(1.7 * i);
+    Eigen::VectorXd g1, g2;
+    SparseMatrix K1 = standard.new_matrix(), K2 = cut.new_matrix();
+    standard.hessian(*mat, x, g1, K1, false);
+    cut.hessian(*mat, x, g2, K2, false);
+    EXPECT_LE((g2 - g1).norm(), 1e-12 * g1.norm()) << order;
+    EXPECT_LE((SparseMatrix(K2 - K1)).norm(), 1e-12 * K1.norm()) << order;
+    // Mass rules of degree 2p: the consistent mass too.
+    const SparseMatrix M1 = standard.mass_matrix(2.0, 2 * order), M2 = cut.mass_matrix(2.0, 2 * order);
+    EXPECT_LE((SparseMatrix(M2 - M1)).norm(), 1e-12 * M1.norm()) << order;
+  }
+}
+
+// The LP simplification (§4.4) keeps the stiffness of cut Tet10 cells: their
+// degree-4 rules stay exact for the degree-2 linear-elastic integrand, so the
+// simplified and the raw clipped rules agree to rounding (1e-11 relative: the
+// simplified weights carry the LP refinement's ~1e-14 moment residual times the
+// conditioning of the Chebyshev basis); each cut cell keeps <= C(4+3,3) = 35 points.
+TEST(FiniteCell, SimplifiedCutCellRulesKeepTheStiffnessAndMass) {
+  const Mesh background = box_mesh(unit_cube(2), CellType::Tetrahedron, 2);
+  const Mesh geometry = box_mesh(BoxSpec{{0.0, 0.0, 0.0}, {0.7, 0.9, 0.62}, {4, 5, 3}}, CellType::Tetrahedron, 1);
+  FiniteCellOptions raw;
+  raw.simplify = false;
+  const CellQuadrature a = finite_cell_quadrature(background, mesh_tetrahedra(geometry), raw);
+  const CellQuadrature b = finite_cell_quadrature(background, mesh_tetrahedra(geometry));  // simplified
+  EXPECT_EQ(a.stiffness_degree, 4);
+  int cut = 0;
+  for (int e = 0; e < background.num_elements(); ++e)
+    if (b.points_before[e] > 0) {
+      ++cut;
+      EXPECT_LE(b.points_after[e], 35) << e;
+      if (b.points_before[e] > 35) EXPECT_LT(b.points_after[e], b.points_before[e]) << e;
+    }
+  EXPECT_GT(cut, 10);
+  EXPECT_EQ(b.simplification_failures, 0);
+  EXPECT_LT(b.max_moment_residual, 1e-12);
+  const std::vector<int> fixed = unsupported_nodes(background, a.element_rules());
+  EXPECT_EQ(fixed, unsupported_nodes(background, b.element_rules()));
+  const DofMap dofs(background.num_nodes(), fixed);
+  Assembler A(background, dofs), B(background, dofs);
+  A.set_element_rules(a.element_rules());
+  B.set_element_rules(b.element_rules());
+  const auto mat = make_material("linear", LameParameters::from_young_poisson(10.0, 0.3));
+  Eigen::VectorXd x = rest_positions(background);
+  for (Eigen::Index i = 0; i < x.size(); ++i) x[i] += 0.01 * std::cos(0.9 * i);
+  Eigen::VectorXd ga, gb;
+  SparseMatrix Ka = A.new_matrix(), Kb = B.new_matrix();
+  A.hessian(*mat, x, ga, Ka, false);
+  B.hessian(*mat, x, gb, Kb, false);
+  EXPECT_LE((SparseMatrix(Kb - Ka)).norm(), 1e-11 * Ka.norm());
+  EXPECT_LE((gb - ga).norm(), 1e-11 * ga.norm());
+  EXPECT_NEAR(B.element_volumes().sum(), 0.7 * 0.9 * 0.62, 1e-13);
+}
+
+// Mass rules integrate the embedded geometry's inertia: with sum_i N_i = 1 and
+// sum_j N_j X_j = X on affine cells, 1^T M 1 is the mass and 1^T M X its first
+// moment, whatever the background, so the centre of mass is the geometry's
+// (exact to rounding: 1e-13), as seed Fig. 6 needs.
+TEST(FiniteCell, MassRulesGiveTheGeometrysMassAndCentreOfMass) {
+  const Mesh geometry = box_mesh(BoxSpec{{0.1, 0.2, 0.05}, {0.8, 0.5, 0.3}, {3, 2, 2}}, CellType::Tetrahedron, 1);
+  const Eigen::Vector3d centre(0.45, 0.35, 0.175);
+  const double volume = 0.7 * 0.3 * 0.25, rho = 3.0;
+  for (auto [cell, order] : {std::pair{CellType::Hexahedron, 1}, std::pair{CellType::Hexahedron, 2},
+                             std::pair{CellType::Tetrahedron, 1}, std::pair{CellType::Tetrahedron, 2}}) {
+    const Mesh background = box_mesh(unit_cube(1), cell, order);  // one coarse cell (hex) / 6 tets
+    const CellQuadrature fc = finite_cell_quadrature(background, mesh_tetrahedra(geometry));
+    const DofMap dofs(background.num_nodes(), unsupported_nodes(background, fc.element_rules()));
+    const DofMap all(background.num_nodes(), {});
+    Assembler a(background, all);
+    a.set_element_rules(fc.element_rules());
+    const Eigen::VectorXd X = rest_positions(background);
+    Eigen::VectorXd ones(X.size());
+    for (int n = 0; n < background.num_nodes(); ++n) ones.segment<3>(3 * n) = Eigen::Vector3d::Ones();
+    const Eigen::VectorXd MX = a.mass_action(rho, 2 * order, X), M1 = a.mass_action(rho, 2 * order, ones);
+    double mass = 0.0;
+    Eigen::Vector3d moment = Eigen::Vector3d::Zero();
+    for (int n = 0; n < background.num_nodes(); ++n) {
+      mass += M1[3 * n];
+      moment += MX.segment<3>(3 * n);
+    }
+    EXPECT_NEAR(mass, rho * volume, 1e-13) << name(cell) << order;
+    EXPECT_LE((moment / mass - centre).norm(), 1e-13) << name(cell) << order;
+    EXPECT_NEAR(a.lumped_mass(rho, 2 * order, MassLumping::HRZ).sum() / 3.0, rho * volume, 1e-13);
+  }
+}
+
+// A geometry made of whole background cells: the finite-cell problem is the
+// conforming one on those cells (empty cells' nodes are fixed as unsupported),
+// so a static solve under gravity gives the same displacements to solver rounding.
+TEST(FiniteCell, StaticProblemOnWholeCellsMatchesTheConformingMesh) {
+  const Mesh background = box_mesh(unit_cube(2), CellType::Hexahedron, 2);
+  const Mesh conforming = box_mesh(BoxSpec{{0, 0, 0}, {1, 1, 0.5}, {2, 2, 1}}, CellType::Hexahedron, 2);
+  const Mesh geometry = box_mesh(BoxSpec{{0, 0, 0}, {1, 1, 0.5}, {3, 3, 2}}, CellType::Tetrahedron, 1);
+  const auto mat = make_material("neohookean", LameParameters::from_young_poisson(1e4, 0.3));
+  const VectorField gravity = [](const Eigen::Vector3d&) { return Eigen::Vector3d(0, 0, -300.0); };
+  StaticOptions o;
+  const CellQuadrature fc = finite_cell_quadrature(background, mesh_tetrahedra(geometry));
+  o.element_rules = fc.element_rules();
+  StaticElasticity fcm(background, *mat, {{background.node_set("xmin"), {}}}, gravity, o);
+  StaticElasticity fem(conforming, *mat, {{conforming.node_set("xmin"), {}}}, gravity);
+  ASSERT_TRUE(fcm.solve().converged);
+  ASSERT_TRUE(fem.solve().converged);
+  EXPECT_EQ(fcm.dofs().num_free(), fem.dofs().num_free());
+  double worst = 0.0;
+  for (int n = 0; n < conforming.num_nodes(); ++n)
+    for (int m = 0; m < background.num_nodes(); ++m)
+      if ((background.nodes.col(m) - conforming.nodes.col(n)).norm() < 1e-12)
+        worst = std::max(worst, (fcm.displacement().segment<3>(3 * m) - fem.displacement().segment<3>(3 * n)).norm());
+  EXPECT_LE(worst, 1e-9 * fem.displacement().cwiseAbs().maxCoeff());  // Newton stops at ~1e-10 relative
+  EXPECT_GT(fem.displacement().cwiseAbs().maxCoeff(), 1e-3);
+}
+
+// Embedded points follow the background field; a linear field is in every
+// basis' space, so it is reproduced exactly also where a point is extrapolated
+// from a neighbour (its own cell inactive): 1e-13, rounding.
+TEST(FiniteCell, EmbeddedPointsInterpolateAndExtrapolate) {
+  for (auto [cell, order] : {std::pair{CellType::Hexahedron, 2}, std::pair{CellType::Tetrahedron, 2}}) {
+    const Mesh background = box_mesh(unit_cube(2), cell, order);
+    Eigen::Matrix3Xd points(3, 4);
+    points << 0.1, 0.6, 0.951, 0.3, 0.2, 0.7, 0.873, 0.3, 0.3, 0.4, 0.962, 0.0;  // point 2 off every tet face
+    std::vector<char> active(background.num_elements(), 1);
+    EmbeddedPointMap first = locate_embedded_points(background, points, active);
+    EXPECT_EQ(first.num_extrapolated, 0);
+    active[first.element[2]] = 0;  // "drop" the cell of point 2
+    const EmbeddedPointMap map = locate_embedded_points(background, points, active);
+    EXPECT_EQ(map.num_extrapolated, 1) << name(cell);
+    EXPECT_TRUE(map.extrapolated[2]);
+    EXPECT_NE(map.element[2], first.element[2]);
+    Eigen::Matrix3d G;
+    G << 0.1, -0.2, 0.3, 0.05, 0.0, 0.4, -0.1, 0.2, 0.0;
+    Eigen::VectorXd u(3 * background.num_nodes());
+    for (int n = 0; n < background.num_nodes(); ++n) u.segment<3>(3 * n) = G * background.nodes.col(n);
+    const Eigen::Matrix3Xd at = interpolate_at_points(background, map, u);
+    EXPECT_LE((at - G * points).cwiseAbs().maxCoeff(), 1e-13);
+  }
+  const Mesh background = box_mesh(unit_cube(1), CellType::Hexahedron, 1);
+  Eigen::Matrix3Xd bad(3, 1);
+  bad << 0.5, std::nan(""), 0.5;
+  EXPECT_THROW(locate_embedded_points(background, bad), std::invalid_argument);
+  EXPECT_THROW(locate_embedded_points(background, Eigen::Matrix3Xd::Zero(3, 1), std::vector<char>(1, 0)),
+               std::invalid_argument);
+}
+
+// The boundary of a tet mesh of the unit cube: 2 x 2 x 2 cubes of 6 tets give 2
+// triangles per face square, total area 6, outward (divergence theorem:
+// integral of X . n over the surface = 3 V = 3).
+TEST(FiniteCell, BoundarySurfaceIsClosedAndOutward) {
+  const Mesh tets = box_mesh(unit_cube(2), CellType::Tetrahedron, 1);
+  std::vector<int> vertex_of;
+  const Mesh s = boundary_surface(tets, &vertex_of);
+  EXPECT_EQ(s.num_elements(), 6 * 4 * 2);
+  EXPECT_EQ(s.num_nodes(), 26);  // 27 grid vertices but the centre
+  double area = 0.0, flux = 0.0;
+  for (int t = 0; t < s.num_elements(); ++t) {
+    const Eigen::Vector3d a = s.nodes.col(s.elements(0, t)), b = s.nodes.col(s.elements(1, t)), c = s.nodes.col(s.elements(2, t));
+    const Eigen::Vector3d n2 = (b - a).cross(c - a);  // twice the area times the normal
+    area += 0.5 * n2.norm();
+    flux += 0.5 * n2.dot((a + b + c) / 3.0);
+    EXPECT_EQ(tets.nodes.col(vertex_of[s.elements(0, t)]), a);
+  }
+  EXPECT_NEAR(area, 6.0, 1e-13);
+  EXPECT_NEAR(flux, 3.0, 1e-13);
 }
 
 }  // namespace
