@@ -1,0 +1,262 @@
+#!/usr/bin/python3
+"""Figures of the second seed's finite-cell experiments, drawn from the rows and
+measurements of reports/verification.json (`hofem verify`).
+
+    /usr/bin/python3 scripts/plot_fcm.py [reports-dir | report.json]
+
+Writes the PNGs next to the JSON. One function per figure; each returns the file
+it wrote, or None after saying which rows it missed (the group did not run), so
+figures of other experiments (fig4, fig6, fig10) can be added as further entries
+of FIGURES.
+"""
+import json
+import re
+import sys
+from pathlib import Path
+
+try:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+except ImportError as e:  # pragma: no cover - environment problem, say what is missing
+    sys.exit(f"plot_fcm: {e}; install the Debian packages python3-numpy python3-matplotlib "
+             f"and run with /usr/bin/python3")
+
+
+def load(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except FileNotFoundError:
+        sys.exit(f"plot_fcm: {path} not found (run `hofem verify` first)")
+    except json.JSONDecodeError as e:
+        sys.exit(f"plot_fcm: {path}: invalid JSON at line {e.lineno}: {e.msg}")
+
+
+def measurements(report, group):
+    return [m for m in report.get("measurements", []) if m["group"] == group]
+
+
+# --- Fig. 5: condition numbers vs smallest volume fraction (group embedded.fig5) ---
+
+FIG5_KAPPA = re.compile(r"^(tet\d+) (none|jacobi|schwarz) (stabilised|unstabilised) eps=(\S+) fraction=(\S+)$")
+FIG5_FRACTION = re.compile(r"^(tet\d+) smallest volume fraction eps=(\S+)$")
+FIG5_LABELS = {"none": "none (A)", "jacobi": "Jacobi", "schwarz": "Additive Schwarz"}
+FIG5_COLOURS = {"none": "tab:grey", "jacobi": "tab:blue", "schwarz": "tab:red"}
+FIG5_STYLES = {"tet4": ("o", "--"), "tet10": ("s", "-")}
+
+
+def fig5_curves(report):
+    """({(stabilisation, cell, preconditioner): sorted [(eps, fraction, kappa)]}, breakdowns).
+
+    kappa is None where the report has no finite value: "breakdown" rows (the
+    Schwarz preconditioner not numerically SPD, kappa +inf, written as null)."""
+    rows = measurements(report, "embedded.fig5")
+    fraction = {}  # (cell, eps string) -> computed smallest volume fraction
+    for m in rows:
+        f = FIG5_FRACTION.match(m["name"])
+        if f and m["value"] is not None:
+            fraction[f.groups()] = m["value"]
+    curves = {}
+    for m in rows:
+        k = FIG5_KAPPA.match(m["name"])
+        if not k:
+            continue
+        cell, preconditioner, stabilisation, eps, named_fraction = k.groups()
+        kappa = m["value"]
+        if kappa is None or not np.isfinite(kappa):
+            kappa = None
+            print(f"plot_fcm: fig5: no finite kappa for '{m['name']}': {m.get('what', '')}")
+        x = fraction.get((cell, eps), float(named_fraction))
+        curves.setdefault((stabilisation, cell, preconditioner), []).append((float(eps), x, kappa))
+    return {key: sorted(points, reverse=True) for key, points in curves.items()}
+
+
+def plot_fig5(report, out_dir):
+    curves = fig5_curves(report)
+    if not curves:
+        print("plot_fcm: fig5 skipped: no 'embedded.fig5' condition-number measurements "
+              "(run `hofem verify --convergence ci` or `full`)")
+        return None
+    finite = [k for points in curves.values() for _, _, k in points if k is not None]
+    top = 10 ** np.ceil(np.log10(max(finite)) + 0.5)  # breakdowns are drawn on this line
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8), sharey=True)
+    for ax, stabilisation, title in zip(axes, ("stabilised", "unstabilised"),
+                                        ("with stabilisation (1e-6)", "without stabilisation")):
+        broken = False
+        for cell in ("tet4", "tet10"):
+            marker, line = FIG5_STYLES[cell]
+            for preconditioner in ("none", "jacobi", "schwarz"):
+                points = curves.get((stabilisation, cell, preconditioner))
+                if not points:
+                    continue
+                colour = FIG5_COLOURS[preconditioner]
+                ok = [(x, k) for _, x, k in points if k is not None]
+                if ok:
+                    ax.loglog(*zip(*ok), marker=marker, linestyle=line, color=colour,
+                              label=f"{cell.capitalize()}, {FIG5_LABELS[preconditioner]}")
+                bad = [x for _, x, k in points if k is None]
+                if bad:
+                    broken = True
+                    ax.loglog(bad, [top] * len(bad), marker="x", linestyle="none", color=colour, markersize=9)
+        if broken:
+            ax.axhline(top, color="k", linewidth=0.5, linestyle=":")
+            ax.text(0.02, 0.97, "x: preconditioner breakdown (S not numerically SPD)", transform=ax.transAxes,
+                    fontsize=8, va="top")
+        ax.invert_xaxis()  # eps -> 0 to the right, as the sweep runs
+        ax.set_title(f"$\\kappa(SA)$, $A = M + \\Delta t^2 K(u)$, {title}", fontsize=10)
+        ax.set_xlabel("smallest volume fraction ($\\epsilon^3$)")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].set_ylabel("$\\kappa = \\max|\\lambda| / \\min|\\lambda|$")
+    axes[0].legend(fontsize=8, loc="center left")
+    fig.suptitle("Seed Fig. 5: 4x4x4 tet grid on $[0, 4/3]^3$, embedded box $[0, 1+\\epsilon/3]^3$, "
+                 "Stable Neo-Hookean (A indefinite)", fontsize=10)
+    fig.tight_layout()
+    out = out_dir / "fcm_fig5_conditioning.png"
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    print_fig5_table(curves)
+    return out
+
+
+def print_fig5_table(curves):
+    cells = sorted({c for _, c, _ in curves}, key=lambda c: int(c[3:]))
+    columns = [(c, p) for c in cells for p in ("none", "jacobi", "schwarz")]
+    for stabilisation in ("stabilised", "unstabilised"):
+        table = {}  # eps -> {(cell, preconditioner): kappa}
+        for (s, c, p), points in curves.items():
+            if s == stabilisation:
+                for eps, _, k in points:
+                    table.setdefault(eps, {})[(c, p)] = k
+        print(f"\nFig. 5 kappa, {stabilisation} (eps^3 = smallest volume fraction; '-' not computed, "
+              f"'breakdown' no spectrum)")
+        print(f"{'eps':<8}" + "".join(f"{c + ' ' + p:>15}" for c, p in columns))
+        for eps in sorted(table, reverse=True):
+            row = table[eps]
+            cols = [f"{'-':>15}" if (c, p) not in row else f"{'breakdown':>15}" if row[(c, p)] is None
+                    else f"{row[(c, p)]:15.3e}" for c, p in columns]
+            print(f"{eps:<8g}" + "".join(cols))
+
+
+def rows(report, group):
+    return [r for r in report.get("rows", []) if r["group"] == group]
+
+
+# --- Fig. 4: simplified vs initial rules (group embedded.fig4) ---
+
+FIG4_ROW = re.compile(r"^(.+) m=(\d+): (initial|simplified) max rel\. error$")
+FIG4_POINTS = re.compile(r"^(.+) m=(\d+): points (before|after)$")
+
+
+def plot_fig4(report, out_dir):
+    errors, points = {}, {}
+    for r in rows(report, "embedded.fig4"):
+        if (m := FIG4_ROW.match(r["name"])):
+            errors.setdefault((m[1], m[3]), []).append((int(m[2]), r["measured"]))
+    for m_ in measurements(report, "embedded.fig4"):
+        if (m := FIG4_POINTS.match(m_["name"])):
+            points.setdefault((m[1], m[3]), []).append((int(m[2]), m_["value"]))
+    if not errors:
+        print("plot_fcm: fig4 skipped: no 'embedded.fig4' rows")
+        return None
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for (geometry, kind), values in sorted(errors.items()):
+        values.sort()
+        a.semilogy(*zip(*values), marker="o" if kind == "initial" else "s",
+                   linestyle="--" if kind == "initial" else "-", label=f"{geometry}, {kind}")
+    a.axhline(1e-12, color="k", linewidth=0.6, linestyle=":", label="threshold 1e-12")
+    a.set_xlabel("strength m")
+    a.set_ylabel("max relative error over monomials of degree <= m")
+    a.legend(fontsize=8)
+    a.grid(True, which="both", alpha=0.3)
+    for (geometry, kind), values in sorted(points.items()):
+        values.sort()
+        b.semilogy(*zip(*values), marker="o", linestyle="--" if kind == "before" else "-",
+                   label=f"{geometry}, {kind}")
+    ms = np.arange(1, 11)
+    b.semilogy(ms, [(m + 1) * (m + 2) * (m + 3) / 6 for m in ms], "k:", label="M = C(m+3, 3) per cell")
+    b.set_xlabel("strength m")
+    b.set_ylabel("quadrature points (summed over cells)")
+    b.legend(fontsize=8)
+    b.grid(True, which="both", alpha=0.3)
+    fig.suptitle("Seed Fig. 4: monomials over a rotated cuboid in the reference hex, clipped vs LP-simplified rules",
+                 fontsize=10)
+    fig.tight_layout()
+    out = out_dir / "fcm_fig4_simplification.png"
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out
+
+
+# --- Fig. 6: centre of mass of a spinning body (group embedded.fig6) ---
+
+def plot_fig6(report, out_dir):
+    drift = [(r["name"].split(":")[0] if ":" in r["name"] else r["name"].replace(" centre-of-mass drift / size", ""),
+              r["measured"], r["threshold"]) for r in rows(report, "embedded.fig6")
+             if r["name"].endswith("centre-of-mass drift / size")]
+    if not drift:
+        print("plot_fcm: fig6 skipped: no 'embedded.fig6' rows")
+        return None
+    fig, ax = plt.subplots(figsize=(8, 3.8))
+    names = [d[0] for d in drift]
+    values = [max(d[1], 1e-17) for d in drift]
+    ax.barh(names, values, color=["tab:red" if "coarse" in n else "tab:blue" for n in names])
+    ax.set_xscale("log")
+    ax.set_xlabel("centre-of-mass drift after half a turn / body size")
+    ax.set_title("Seed Fig. 6: a half tube spinning about its centre of mass (implicit Euler, 50 steps)", fontsize=10)
+    ax.grid(True, which="both", axis="x", alpha=0.3)
+    fig.tight_layout()
+    out = out_dir / "fcm_fig6_centre_of_mass.png"
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out
+
+
+# --- Fig. 10: static L2 convergence (group embedded.fig10) ---
+
+FIG10 = re.compile(r"^(.+) h=1/(\d+) l2$")
+
+
+def plot_fig10(report, out_dir):
+    series = {}
+    for m_ in measurements(report, "embedded.fig10"):
+        if (m := FIG10.match(m_["name"])):
+            series.setdefault(m[1], []).append((1.0 / int(m[2]), m_["value"]))
+    if not series:
+        print("plot_fcm: fig10 skipped: no 'embedded.fig10' measurements")
+        return None
+    fig, ax = plt.subplots(figsize=(6.5, 4.8))
+    for name, values in sorted(series.items()):
+        values.sort()
+        ax.loglog(*zip(*values), marker="s" if "Hex20" in name else "o",
+                  linestyle="-" if name.startswith("FCM") else "--", label=name)
+    h = np.array(sorted({v[0] for values in series.values() for v in values}))
+    for rate, anchor in ((1, 0.3), (2, 0.08), (3, 0.004)):
+        ax.loglog(h, anchor * (h / h[-1]) ** rate, "k:", linewidth=0.7)
+        ax.text(h[-1], anchor * 1.1, f"O(h^{rate})", fontsize=8)
+    ax.set_xlabel("h")
+    ax.set_ylabel("relative L2 error (manufactured solution)")
+    ax.set_title("Seed Fig. 10: half ball in hex grids, FCM vs staircase FEM", fontsize=10)
+    ax.legend(fontsize=8)
+    ax.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    out = out_dir / "fcm_fig10_convergence.png"
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out
+
+
+FIGURES = [("fig4", plot_fig4), ("fig5", plot_fig5), ("fig6", plot_fig6), ("fig10", plot_fig10)]
+
+
+def main():
+    target = Path(sys.argv[1] if len(sys.argv) > 1 else "reports")
+    path = target if target.suffix == ".json" else target / "verification.json"
+    report = load(path)
+    written = [out for _, plot in FIGURES if (out := plot(report, path.parent)) is not None]
+    print(f"\nplot_fcm: wrote {', '.join(str(p) for p in written) if written else 'nothing'}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,13 @@
+#pragma once
+#include "report.hpp"
+
+#include <string>
+
+namespace hofem::verification {
+
+/// Second seed Fig. 10: static L2 convergence of FCM Hex8 / Hex20 on a half
+/// ball (manufactured solution) against staircase FEM on the same grids.
+/// level "ci": grids 1/4, 1/8; "full": also 1/16. Group "embedded.fig10".
+void add_fcm_convergence_checks(Report& report, const std::string& level);
+
+}  // namespace hofem::verification
