@@ -121,7 +121,8 @@ void DynamicElasticity::ensure_consistent_mass() {
 void DynamicElasticity::ensure_linear_solver() {
   if (solver_) return;
   solver_ = make_linear_solver(options_.linear_solver);
-  solver_->set_discretization({&mesh_, &dofs_});
+  solver_->set_discretization(
+      {&mesh_, &dofs_, options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr});
   K_ = assembler_->new_matrix();
 }
 

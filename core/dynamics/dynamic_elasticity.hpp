@@ -48,6 +48,9 @@ struct DynamicsOptions {
   /// Finite cell method: per-element stiffness and mass rules (finite_cell_quadrature's
   /// element_rules()); nodes they leave without stiffness and mass are held at rest.
   ElementRules element_rules;
+  /// Elements given blocks by block preconditioners ("schwarz"): finite cells'
+  /// schwarz_block_elements(); unset: every element.
+  std::optional<std::vector<int>> preconditioner_blocks;
   std::string linear_solver = "cholmod";
   NewtonOptions newton;
   /// Explicit runs stop as unstable when the mechanical energy exceeds this

@@ -234,6 +234,16 @@ StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& c
   return out;
 }
 
+std::vector<int> schwarz_block_elements(const CellQuadrature& cells, double threshold) {
+  std::vector<int> out;
+  for (size_t e = 0; e < cells.volume_fraction.size(); ++e) {
+    const double f = cells.volume_fraction[e];
+    const bool dropped = cells.rules[e] && cells.rules[e]->rule.size() == 0;
+    if (f > 0.0 && f < threshold && f < 1.0 - 1e-12 && !dropped) out.push_back(static_cast<int>(e));
+  }
+  return out;
+}
+
 std::vector<int> active_nodes(const Mesh& background, const CellQuadrature& cells) {
   std::vector<char> used(background.num_nodes(), 0);
   for (int e = 0; e < background.num_elements(); ++e)

@@ -36,7 +36,8 @@ StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, s
   assembler_ = std::make_unique<Assembler>(mesh, dofs_, options_.quadrature_degree);
   assembler_->set_element_rules(options_.element_rules);
   solver_ = make_linear_solver(options_.linear_solver);
-  solver_->set_discretization({&mesh_, &dofs_});
+  solver_->set_discretization(
+      {&mesh_, &dofs_, options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr});
   const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * mesh.order + 2;
   f_ext_ = body_force ? assembler_->body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * mesh.num_nodes());
   if (options_.external_load.size() > 0) {

@@ -15,6 +15,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,9 @@ struct StaticOptions {
   /// Finite cell method: per-element stiffness and mass/load rules (finite_cell_quadrature's
   /// element_rules()); nodes they leave without stiffness are fixed (zero displacement).
   ElementRules element_rules;
+  /// Elements given blocks by block preconditioners ("schwarz"): finite cells'
+  /// schwarz_block_elements(); unset: every element.
+  std::optional<std::vector<int>> preconditioner_blocks;
   /// Extra external load at full load factor, all 3 * num_nodes DOFs (e.g. surface
   /// tractions integrated by the caller); empty = none.
   Eigen::VectorXd external_load;

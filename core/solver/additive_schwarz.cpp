@@ -152,8 +152,10 @@ Eigen::Map<const Eigen::MatrixXd> AdditiveSchwarzPreconditioner::block_inverse(i
 bool AdditiveSchwarzPreconditioner::build_blocks() {
   const Mesh& mesh = *discretization_.mesh;
   const DofMap& dofs = *discretization_.dofs;
-  std::vector<int> selected = options_.elements;
-  if (selected.empty()) {
+  // Own option first, then the discretization's (finite cells), then all elements.
+  const bool from_discretization = options_.elements.empty() && discretization_.block_elements;
+  std::vector<int> selected = from_discretization ? *discretization_.block_elements : options_.elements;
+  if (selected.empty() && !from_discretization) {
     selected.resize(mesh.num_elements());
     for (int e = 0; e < mesh.num_elements(); ++e) selected[e] = e;
   }

@@ -38,7 +38,8 @@
 namespace hofem {
 
 struct AdditiveSchwarzOptions {
-  /// Elements contributing a block (ids into mesh.elements); empty = all.
+  /// Elements contributing a block (ids into mesh.elements); empty = those the
+  /// discretization names (Discretization::block_elements), or all if it names none.
   std::vector<int> elements;
   /// Relative eigenvalue threshold of eq. 14 (the paper's ~1e-13).
   double epsilon = 1e-13;

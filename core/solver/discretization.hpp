@@ -7,11 +7,17 @@
 #include "assembly/dof_map.hpp"
 #include "mesh/mesh.hpp"
 
+#include <vector>
+
 namespace hofem {
 
 struct Discretization {
   const Mesh* mesh = nullptr;
   const DofMap* dofs = nullptr;
+  /// Elements that need a block of their own in block preconditioners (the
+  /// finite cell method's cut cells under a volume-fraction threshold, second
+  /// seed §5.2); null: every element. Non-null and empty: none (diagonal only).
+  const std::vector<int>* block_elements = nullptr;
   bool valid() const { return mesh != nullptr && dofs != nullptr; }
 };
 
