@@ -18,6 +18,7 @@ try:
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
     import numpy as np
 except ImportError as e:  # pragma: no cover - environment problem, say what is missing
     sys.exit(f"plot_fcm: {e}; install the Debian packages python3-numpy python3-matplotlib "
@@ -236,6 +237,8 @@ def plot_fig10(report, out_dir):
         ax.loglog(h, anchor * (h / h[-1]) ** rate, "k:", linewidth=0.7)
         ax.text(h[-1], anchor * 1.1, f"O(h^{rate})", fontsize=8)
     ax.set_xlabel("h")
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())  # two or three grids: no crowded labels
+    ax.set_xticks(h, [f"1/{round(1 / v)}" for v in h])
     ax.set_ylabel("relative L2 error (manufactured solution)")
     ax.set_title("Seed Fig. 10: half ball in hex grids, FCM vs staircase FEM", fontsize=10)
     ax.legend(fontsize=8)

@@ -165,7 +165,22 @@ Eigen::VectorXd DynamicElasticity::displacement() const {
 
 Eigen::VectorXd DynamicElasticity::mass_times(const Eigen::VectorXd& r) const {
   if (mass_kind_ == MassKind::Lumped) return lumped_.cwiseProduct(r);
-  return assembler_->mass_action(options_.density, mass_degree_, r);
+  return consistent_mass_times(r);
+}
+
+// The consistent mass over ALL DOFs (prescribed ones too: kinetic energy and the
+// coupling to prescribed accelerations), assembled once on first use: integrating
+// it again per product cost half of an embedded scene's run, whose cut cells carry
+// mass rules of 1e5-1e6 points.
+Eigen::VectorXd DynamicElasticity::consistent_mass_times(const Eigen::VectorXd& r) const {
+  if (M_all_.size() == 0) {
+    const DofMap all(mesh_.num_nodes(), {});
+    Assembler a(mesh_, all, options_.quadrature_degree);
+    a.set_element_rules(options_.element_rules);
+    M_all_ = a.mass_matrix(options_.density, mass_degree_);
+    ++stats_.mass_matrices_built;
+  }
+  return M_all_ * r;
 }
 
 Energies DynamicElasticity::energies() {

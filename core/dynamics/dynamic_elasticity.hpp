@@ -143,6 +143,7 @@ class DynamicElasticity {
   Eigen::VectorXd forces(const Eigen::VectorXd& x, const Eigen::VectorXd& v);
   Eigen::VectorXd accelerations(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
   Eigen::VectorXd mass_times(const Eigen::VectorXd& r) const;
+  Eigen::VectorXd consistent_mass_times(const Eigen::VectorXd& r) const;
   Eigen::VectorXd stiffness_times(const Eigen::VectorXd& x, const Eigen::VectorXd& w);
   void impose_motion(double t, Eigen::VectorXd& x, Eigen::VectorXd* v) const;
   double kinetic_energy() const;
@@ -170,6 +171,7 @@ class DynamicElasticity {
   std::unique_ptr<Assembler> assembler_;
   Eigen::VectorXd lumped_;        ///< lumped mass per DOF (lumped runs)
   SparseMatrix M_;                ///< consistent mass over the free DOFs (when needed)
+  mutable SparseMatrix M_all_;    ///< consistent mass over all DOFs (built on first product)
   std::unique_ptr<LinearSolver> mass_solver_;  ///< explicit + consistent mass
   std::unique_ptr<LinearSolver> solver_;       ///< implicit integrators
   SparseMatrix K_;

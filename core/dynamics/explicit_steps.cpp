@@ -54,7 +54,7 @@ Eigen::VectorXd DynamicElasticity::accelerations(double t, const Eigen::VectorXd
   if (mass_kind_ == MassKind::Lumped) {
     for (int i : dofs_.free_dofs()) a[i] = f[i] / lumped_[i];
   } else {
-    if (moving_boundary_) f -= assembler_->mass_action(options_.density, mass_degree_, a_p);
+    if (moving_boundary_) f -= consistent_mass_times(a_p);
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd af;
     mass_solver_->solve(dofs_.restrict(f), af);

@@ -150,7 +150,7 @@ void DynamicElasticity::step_implicit_euler(StepReport& report) {
   if (moving_boundary_ && mass_kind_ == MassKind::Consistent) {
     Eigen::VectorXd r_p = Eigen::VectorXd::Zero(x_.size());
     for (int i : dofs_.constrained_dofs()) r_p[i] = x_new[i] - (x_[i] + h * v_[i]);
-    coupling = dofs_.restrict(assembler_->mass_action(options_.density, mass_degree_, r_p));
+    coupling = dofs_.restrict(consistent_mass_times(r_p));
   }
   SparseMatrix K_n;
   if (options_.rayleigh_beta > 0.0) {  // D's stiffness part, frozen at the step's start
@@ -220,7 +220,7 @@ void DynamicElasticity::step_semi_implicit(StepReport& report) {
       for (const PrescribedMotion& m : motions_)
         if (m.acceleration)
           for (int n : m.nodes) a_p.segment<3>(3 * n) = m.acceleration(mesh_.nodes.col(n), t_ + h);
-      f -= assembler_->mass_action(options_.density, mass_degree_, a_p);
+      f -= consistent_mass_times(a_p);
     }
   } else {
     Mfree_diag = dofs_.restrict(lumped_);

@@ -22,6 +22,8 @@ int nodes_per_element(CellType cell, int order) {
     if (order == 2) return 20;
     throw MeshError(fmt::format("hexahedron order must be 1 (Hex8) or 2 (Hex20), got {}", order));
   }
+  // Triangles: surfaces written for output (the embedded surface of the finite cell method).
+  if (cell == CellType::Triangle && order >= 1) return (order + 1) * (order + 2) / 2;
   throw MeshError(fmt::format("meshes of {} cells are not supported (tet or hex)", name(cell)));
 }
 

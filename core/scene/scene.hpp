@@ -25,8 +25,27 @@
 //                 nodes become free at that time, like a slingshot's)
 //   "floor": {"height": 0, "normal": [0,0,1], "stiffness": 1e7},          (optional)
 //   "initial_velocity": [0, 0, 0],                                        (optional)
-//   "output": {"every": 1}                         (a frame every N steps; optional)
+//   "output": {"every": 1},                        (a frame every N steps; optional)
+//   "embedded": {"file": "../meshes/ball.msh"}                            (optional, below)
+//            or {"tube": {"r_in": .., "r_out": .., "height": .., "cells": [..]}}
+//            or {"box": {"min": [..], "max": [..], "cells": [..]}},
+//               with optional "drop_fraction": 1e-4, "stabilisation": 1e-6, "simplify": true
 // }
+//
+// Embedded scenes (finite cell method, second seed §3.2, §5.3): "embedded" gives
+// the body's geometry as tetrahedra - the generators' Tet4 meshes, or a .msh of
+// tetrahedra of any order of which only the vertex tets are used - and "mesh" is
+// then the background that carries the displacement: a box grid (hex or tet, any
+// order) or a .msh of straight-sided cells; a tube is refused (its cells are
+// curved or not parallelepipeds, and the cut-cell rules need affine cells). The
+// runner integrates over the geometry only (finite-cell rules built once), drops
+// cut cells whose volume fraction is below drop_fraction and adds the full cell's
+// Gauss points at weight `stabilisation` to the other cut cells, simplifies the
+// cut cells' stiffness rules when `simplify` (embedded/finite_cell_quadrature.hpp).
+// The geometry must lie inside the background. Boundary selections ("box" and
+// named sets) pick BACKGROUND nodes: put the embedded body's clamped faces on
+// grid planes and select those planes' nodes (e.g. "zmin"); background nodes of
+// cells that integrate nothing are held at rest.
 #include "dynamics/dynamic_elasticity.hpp"
 #include "mesh/mesh.hpp"
 
@@ -56,17 +75,31 @@ struct SceneBoundary {
   double release = std::numeric_limits<double>::infinity();  ///< the nodes become free at this time
 };
 
+/// Where a mesh comes from: the box or tube generator, or a .msh file.
+struct SceneShape {
+  std::string file;  ///< empty: box or tube generator (relative paths resolved against the scene's folder)
+  bool tube = false; ///< hollow cylinder about z (mesh/tube_mesh.hpp)
+  double tube_r_in = 0.5, tube_r_out = 1.0, tube_height = 1.0;
+  Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Ones();
+  Eigen::Vector3i cells = Eigen::Vector3i::Constant(2);  ///< box: per axis; tube: radial, around, along z
+};
+
+/// The embedded geometry of a finite-cell scene and its quadrature settings.
+struct SceneEmbedded {
+  SceneShape shape;  ///< tetrahedra (generators: Tet4)
+  double drop_fraction = 1e-4;
+  double stabilisation = 1e-6;
+  bool simplify = true;
+};
+
 struct Scene {
   std::string file;  ///< where it was read from (for messages)
   std::string name;
-  // mesh
-  std::string mesh_file;  ///< empty: box or tube generator
-  bool tube = false;      ///< hollow cylinder about z (mesh/tube_mesh.hpp)
-  double tube_r_in = 0.5, tube_r_out = 1.0, tube_height = 1.0;
-  Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Ones();
-  Eigen::Vector3i box_cells = Eigen::Vector3i::Constant(2);
+  // mesh (the background when `embedded` is set)
+  SceneShape mesh;
   CellType cell = CellType::Tetrahedron;
   int order = 1;
+  std::optional<SceneEmbedded> embedded;
   // material
   std::string material = "neohookean";
   double young = 1e6, poisson = 0.3, density = 1000.0;
@@ -86,6 +119,10 @@ Scene parse_scene(const std::string& text, const std::string& origin);
 
 /// Builds the scene's mesh (generator or .msh, upgraded to the order).
 Mesh build_scene_mesh(const Scene& scene);
+/// The embedded geometry's tetrahedral mesh (generators: Tet4; a .msh as read,
+/// any order); throws SceneError naming embedded.file if it cannot be read or is
+/// not tetrahedral. Requires scene.embedded.
+Mesh build_embedded_mesh(const Scene& scene);
 /// The node ids a boundary entry selects; throws SceneError if none.
 std::vector<int> boundary_nodes(const Scene& scene, const Mesh& mesh, size_t index);
 

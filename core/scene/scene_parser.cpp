@@ -94,40 +94,61 @@ class Field {
   const std::string& origin_;
 };
 
+// The keys "box", "tube" and "file" of a mesh or embedded geometry (exactly one).
+void parse_shape(const Field& m, SceneShape& shape, const std::string& scene_file) {
+  if (m.has("box") + m.has("file") + m.has("tube") != 1) m.fail("needs exactly one of 'box', 'tube' and 'file'");
+  if (m.has("tube")) {
+    const Field t = m.at("tube");
+    t.keys({"r_in", "r_out", "height", "cells"});
+    shape.tube = true;
+    shape.tube_r_in = t.at("r_in").number(0.0, 1e300, true);
+    shape.tube_r_out = t.at("r_out").number(shape.tube_r_in, 1e300, true);
+    shape.tube_height = t.at("height").number(0.0, 1e300, true);
+    const Field c = t.at("cells");
+    if (!c.raw().is_array() || c.raw().size() != 3) c.fail("must be an array of 3 integers (radial, around, along z)");
+    shape.cells << c.item(0).integer(1, 1000), c.item(1).integer(3, 10000), c.item(2).integer(1, 1000);
+  } else if (m.has("box")) {
+    const Field b = m.at("box");
+    b.keys({"min", "max", "cells"});
+    shape.box_min = b.at("min").vec3();
+    shape.box_max = b.at("max").vec3();
+    if (!(shape.box_max.array() > shape.box_min.array()).all()) b.fail("needs max > min in every coordinate");
+    const Field c = b.at("cells");
+    if (!c.raw().is_array() || c.raw().size() != 3) c.fail("must be an array of 3 integers");
+    for (int i = 0; i < 3; ++i) shape.cells[i] = c.item(i).integer(1, 1000);
+  } else {
+    shape.file = m.at("file").string();
+    if (shape.file.empty()) m.at("file").fail("must name a .msh file");
+    // Relative paths are relative to the scene file.
+    if (std::filesystem::path(shape.file).is_relative() && !scene_file.empty())
+      shape.file = (std::filesystem::path(scene_file).parent_path() / shape.file).string();
+  }
+}
+
 void parse_mesh(const Field& m, Scene& s) {
   m.keys({"box", "tube", "file", "cell", "order"});
-  if (m.has("box") + m.has("file") + m.has("tube") != 1) m.fail("needs exactly one of 'box', 'tube' and 'file'");
+  parse_shape(m, s.mesh, s.file);
   // The generators take a cell type; a .msh file brings its own.
   if (m.has("cell")) {
     if (m.has("file")) m.at("cell").fail("is given by the .msh file; remove it");
     s.cell = m.at("cell").choice({"tet", "hex"}) == "hex" ? CellType::Hexahedron : CellType::Tetrahedron;
   }
-  if (m.has("tube")) {
-    const Field t = m.at("tube");
-    t.keys({"r_in", "r_out", "height", "cells"});
-    s.tube = true;
-    s.tube_r_in = t.at("r_in").number(0.0, 1e300, true);
-    s.tube_r_out = t.at("r_out").number(s.tube_r_in, 1e300, true);
-    s.tube_height = t.at("height").number(0.0, 1e300, true);
-    const Field c = t.at("cells");
-    if (!c.raw().is_array() || c.raw().size() != 3) c.fail("must be an array of 3 integers (radial, around, along z)");
-    s.box_cells << c.item(0).integer(1, 1000), c.item(1).integer(3, 10000), c.item(2).integer(1, 1000);
-  } else if (m.has("box")) {
-    const Field b = m.at("box");
-    b.keys({"min", "max", "cells"});
-    s.box_min = b.at("min").vec3();
-    s.box_max = b.at("max").vec3();
-    if (!(s.box_max.array() > s.box_min.array()).all()) b.fail("needs max > min in every coordinate");
-    const Field c = b.at("cells");
-    if (!c.raw().is_array() || c.raw().size() != 3) c.fail("must be an array of 3 integers");
-    for (int i = 0; i < 3; ++i) s.box_cells[i] = c.item(i).integer(1, 1000);
-  } else {
-    s.mesh_file = m.at("file").string();
-    // Relative paths are relative to the scene file.
-    if (!s.mesh_file.empty() && std::filesystem::path(s.mesh_file).is_relative() && !s.file.empty())
-      s.mesh_file = (std::filesystem::path(s.file).parent_path() / s.mesh_file).string();
-  }
   s.order = m.has("order") ? m.at("order").integer(1, s.cell == CellType::Hexahedron ? 2 : 6) : 1;
+}
+
+// "embedded": the geometry (Tet4 generators or a .msh of tets) and the finite-cell settings.
+void parse_embedded(const Field& e, const Field& mesh, Scene& s) {
+  e.keys({"box", "tube", "file", "drop_fraction", "stabilisation", "simplify"});
+  SceneEmbedded emb;
+  parse_shape(e, emb.shape, s.file);
+  if (e.has("drop_fraction")) emb.drop_fraction = e.at("drop_fraction").number(0.0, 1.0, false, true);
+  if (e.has("stabilisation")) emb.stabilisation = e.at("stabilisation").number(0.0, 1.0);
+  if (e.has("simplify")) emb.simplify = e.at("simplify").boolean();
+  // The cut-cell rules need affine background cells: the tube's are curved (order
+  // 2) or not parallelepipeds (Hex8), so only a box grid or a straight .msh will do.
+  if (s.mesh.tube)
+    mesh.at("tube").fail("cannot be the background of an embedded scene (its cells are not affine); use 'box'");
+  s.embedded = std::move(emb);
 }
 
 void parse_boundary(const Field& b, Scene& s) {
@@ -190,9 +211,10 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
   s.file = origin;
   const Field root(j, "", origin);
   root.keys({"name", "mesh", "material", "integrator", "dt", "duration", "mass", "lumping", "solver", "gravity",
-             "damping", "boundary", "floor", "initial_velocity", "output"});
+             "damping", "boundary", "floor", "initial_velocity", "output", "embedded"});
   s.name = root.has("name") ? root.at("name").string() : std::filesystem::path(origin).stem().string();
   parse_mesh(root.at("mesh"), s);
+  if (root.has("embedded")) parse_embedded(root.at("embedded"), root.at("mesh"), s);
 
   const Field mat = root.at("material");
   mat.keys({"model", "young", "poisson", "density"});
@@ -265,25 +287,49 @@ Scene read_scene(const std::string& path) {
 }
 
 Mesh build_scene_mesh(const Scene& s) {
-  if (s.tube)
-    return hollow_cylinder_mesh(s.tube_r_in, s.tube_r_out, s.tube_height, s.box_cells.x(), s.box_cells.y(),
-                                s.box_cells.z(), s.cell, s.order);
-  if (s.mesh_file.empty())
-    return box_mesh(BoxSpec{{s.box_min.x(), s.box_min.y(), s.box_min.z()},
-                            {s.box_max.x(), s.box_max.y(), s.box_max.z()},
-                            {s.box_cells.x(), s.box_cells.y(), s.box_cells.z()}},
+  const SceneShape& m = s.mesh;
+  if (m.tube)
+    return hollow_cylinder_mesh(m.tube_r_in, m.tube_r_out, m.tube_height, m.cells.x(), m.cells.y(), m.cells.z(), s.cell,
+                                s.order);
+  if (m.file.empty())
+    return box_mesh(BoxSpec{{m.box_min.x(), m.box_min.y(), m.box_min.z()},
+                            {m.box_max.x(), m.box_max.y(), m.box_max.z()},
+                            {m.cells.x(), m.cells.y(), m.cells.z()}},
                     s.cell, s.order);
-  Mesh m;
+  Mesh mesh;
   try {
-    m = read_gmsh(s.mesh_file);
+    mesh = read_gmsh(m.file);
   } catch (const std::exception& e) {
     throw SceneError(fmt::format("{}: mesh.file: {}", s.file, e.what()));
   }
-  if (m.order == s.order) return m;
-  if (m.order != 1 || m.cell != CellType::Tetrahedron)
+  if (mesh.order == s.order) return mesh;
+  if (mesh.order != 1 || mesh.cell != CellType::Tetrahedron)
     throw SceneError(fmt::format("{}: mesh.order = {}: the mesh '{}' has order {}; only P1 tetrahedra are upgraded",
-                                 s.file, s.order, s.mesh_file, m.order));
-  return upgrade_order(m, s.order);
+                                 s.file, s.order, m.file, mesh.order));
+  return upgrade_order(mesh, s.order);
+}
+
+Mesh build_embedded_mesh(const Scene& s) {
+  if (!s.embedded) throw std::logic_error("build_embedded_mesh: the scene has no embedded geometry");
+  const SceneShape& g = s.embedded->shape;
+  if (g.tube)
+    return hollow_cylinder_mesh(g.tube_r_in, g.tube_r_out, g.tube_height, g.cells.x(), g.cells.y(), g.cells.z(),
+                                CellType::Tetrahedron, 1);
+  if (g.file.empty())
+    return box_tet_mesh(BoxSpec{{g.box_min.x(), g.box_min.y(), g.box_min.z()},
+                                {g.box_max.x(), g.box_max.y(), g.box_max.z()},
+                                {g.cells.x(), g.cells.y(), g.cells.z()}});
+  Mesh mesh;
+  try {
+    mesh = read_gmsh(g.file);
+  } catch (const std::exception& e) {
+    throw SceneError(fmt::format("{}: embedded.file: {}", s.file, e.what()));
+  }
+  if (mesh.cell != CellType::Tetrahedron)
+    throw SceneError(
+        fmt::format("{}: embedded.file: '{}' is not a tetrahedral mesh (the embedded geometry must be tetrahedra)",
+                    s.file, g.file));
+  return mesh;
 }
 
 std::vector<int> boundary_nodes(const Scene& s, const Mesh& mesh, size_t index) {

@@ -3,6 +3,7 @@
 #include "material/material.hpp"
 #include "mesh/vtu_writer.hpp"
 #include "problem/static_elasticity.hpp"
+#include "scene/scene_embedding.hpp"
 
 #include <fmt/format.h>
 
@@ -11,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <unistd.h>
 
 namespace hofem {
@@ -34,14 +36,39 @@ std::vector<PrescribedMotion> scene_motions(const Scene& s, const Mesh& mesh) {
   return motions;
 }
 
-void write_frame(const std::string& dir, int frame, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
-                 const Eigen::VectorXd& energy_density, std::vector<std::pair<double, std::string>>& frames, double t) {
+// Strain-energy density per cell; 0 where a finite cell integrates nothing (volume 0).
+Eigen::VectorXd energy_density(const Eigen::VectorXd& energies, const Eigen::VectorXd& volumes) {
+  return (volumes.array() > 0.0).select(energies.array() / volumes.array(), 0.0).matrix();
+}
+
+// Frame `frame` of the mesh (the background, when embedded: with each cell's
+// volume fraction, and the embedded surface in its own series).
+void write_frame(const std::string& dir, int frame, const Mesh& mesh, const Eigen::VectorXd& u,
+                 const Eigen::VectorXd& v, const Eigen::VectorXd& density, SceneEmbedding* embedding,
+                 std::vector<std::pair<double, std::string>>& frames, double t) {
   const std::string name = fmt::format("frame_{:05d}.vtu", frame);
   std::vector<VtuField> point{{"displacement", u.reshaped(3, mesh.num_nodes())}};
   if (v.size() > 0) point.push_back({"velocity", v.reshaped(3, mesh.num_nodes())});
-  write_vtu((std::filesystem::path(dir) / name).string(), mesh, point,
-            {{"strain_energy_density", energy_density.transpose()}});
+  std::vector<VtuField> cell{{"strain_energy_density", density.transpose()}};
+  if (embedding) {
+    const std::vector<double>& f = embedding->volume_fraction();
+    cell.push_back(
+        {"volume_fraction", Eigen::Map<const Eigen::RowVectorXd>(f.data(), static_cast<Eigen::Index>(f.size()))});
+    embedding->write_frame(dir, frame, u, t);
+  }
+  write_vtu((std::filesystem::path(dir) / name).string(), mesh, point, cell);
   frames.emplace_back(t, name);
+}
+
+// The displacement curve of a step (thesis Fig. 10-11): mean displacement and
+// lowest z over the mesh's nodes, or over the embedded surface's vertices.
+void add_displacement_curve(const Mesh& mesh, const Eigen::VectorXd& u, const SceneEmbedding* embedding, json& row) {
+  const Eigen::Matrix3Xd d =
+      embedding ? embedding->surface_displacement(u) : Eigen::Matrix3Xd(u.reshaped(3, mesh.num_nodes()));
+  const Eigen::Matrix3Xd& X = embedding ? embedding->surface().nodes : mesh.nodes;
+  const Eigen::Vector3d mean = d.rowwise().mean();
+  row["mean_displacement"] = {mean.x(), mean.y(), mean.z()};
+  row["lowest_z"] = (X + d).row(2).minCoeff();
 }
 
 void progress_bar(double fraction, double t, bool done) {
@@ -81,6 +108,9 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
   std::filesystem::create_directories(out_dir, ec);
   if (ec) throw SceneError(fmt::format("{}: cannot create the output directory '{}': {}", s.file, out_dir, ec.message()));
   const Mesh mesh = build_scene_mesh(s);
+  std::optional<SceneEmbedding> embedding;
+  if (s.embedded) embedding.emplace(s, mesh);
+  SceneEmbedding* const emb = embedding ? &*embedding : nullptr;
   const auto material = make_material(s.material, LameParameters::from_young_poisson(s.young, s.poisson));
   std::vector<PrescribedMotion> motions = scene_motions(s, mesh);
   const bool progress = options.progress && isatty(fileno(stderr));
@@ -93,6 +123,7 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
   st["mesh"] = {{"cell", s.cell == CellType::Hexahedron ? "hex" : "tet"}, {"order", mesh.order},
                 {"nodes", mesh.num_nodes()}, {"elements", mesh.num_elements()}};
   st["material"] = {{"model", s.material}, {"young", s.young}, {"poisson", s.poisson}, {"density", s.density}};
+  if (emb) st["embedded"] = emb->stats();
   std::vector<std::pair<double, std::string>> frames;
 
   if (s.is_static) {
@@ -111,6 +142,10 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     StaticOptions so;
     so.linear_solver = s.dynamics.linear_solver;
     so.newton = s.dynamics.newton;
+    if (emb) {
+      so.element_rules = emb->element_rules();
+      so.preconditioner_blocks = emb->preconditioner_blocks();
+    }
     const Eigen::Vector3d rho_g = s.density * s.dynamics.gravity;
     VectorField body;
     if (rho_g.squaredNorm() > 0.0) body = [rho_g](const Eigen::Vector3d&) { return rho_g; };
@@ -121,8 +156,8 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     const Eigen::VectorXd u = problem.displacement();
     const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), u.size()) + u;
     const Eigen::VectorXd density =
-        problem.assembler().element_energies(*material, x).cwiseQuotient(problem.assembler().element_volumes());
-    if (options.write_frames) write_frame(out_dir, 0, mesh, u, Eigen::VectorXd(), density, frames, 0.0);
+        energy_density(problem.assembler().element_energies(*material, x), problem.assembler().element_volumes());
+    if (options.write_frames) write_frame(out_dir, 0, mesh, u, Eigen::VectorXd(), density, emb, frames, 0.0);
     st["built"] = {{"mass", "none (static)"},
                    {"mass_matrices_built", 0},
                    {"hessian_assemblies", r.newton_iterations},
@@ -138,17 +173,26 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
                    {"assembly_seconds", r.assembly_seconds},
                    {"solve_seconds", r.solve_seconds}};
   } else {
-    DynamicElasticity sim(mesh, *material, std::move(motions), s.dynamics);
+    DynamicsOptions dynamics = s.dynamics;
+    if (emb) {
+      dynamics.element_rules = emb->element_rules();
+      dynamics.preconditioner_blocks = emb->preconditioner_blocks();  // "schwarz": cut cells under 0.5 (§5.2)
+    }
+    DynamicElasticity sim(mesh, *material, std::move(motions), std::move(dynamics));
     const Eigen::Vector3d v0 = s.initial_velocity;
     if (v0.squaredNorm() > 0.0) sim.set_velocity([v0](const Eigen::Vector3d&) { return v0; });
     const Eigen::VectorXd volumes = sim.assembler().element_volumes();
     auto frame = [&](int k) {
       if (!options.write_frames) return;
-      const Eigen::VectorXd density = sim.assembler().element_energies(*material, sim.positions()).cwiseQuotient(volumes);
-      write_frame(out_dir, k, mesh, sim.displacement(), sim.velocities(), density, frames, sim.time());
+      const Eigen::VectorXd density =
+          energy_density(sim.assembler().element_energies(*material, sim.positions()), volumes);
+      write_frame(out_dir, k, mesh, sim.displacement(), sim.velocities(), density, emb, frames, sim.time());
     };
     if (is_explicit(s.dynamics.integrator)) st["stable_dt_estimate"] = sim.estimate_stable_dt();
     const int steps = static_cast<int>(std::ceil(s.duration / s.dynamics.dt - 1e-9));
+    // Mesh, finite-cell rules, mass matrix, ...: everything before the first step.
+    const auto t_steps = Clock::now();
+    st["setup_seconds"] = std::chrono::duration<double>(t_steps - t_start).count();
     frame(0);
     json per_step = json::array();
     int done = 0;
@@ -167,12 +211,7 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
       const Energies e = sim.energies();
       row["energy"] = {{"kinetic", e.kinetic}, {"elastic", e.elastic}, {"gravity", e.gravity}, {"floor", e.floor},
                        {"total", e.total()}};
-      // The displacement curve the integrators are compared by (thesis Fig.
-      // 10-11): the mean nodal displacement and the lowest point.
-      const Eigen::Matrix3Xd u = sim.displacement().reshaped(3, mesh.num_nodes());
-      const Eigen::Vector3d mean = u.rowwise().mean();
-      row["mean_displacement"] = {mean.x(), mean.y(), mean.z()};
-      row["lowest_z"] = sim.positions().reshaped(3, mesh.num_nodes()).row(2).minCoeff();
+      add_displacement_curve(mesh, sim.displacement(), emb, row);
       per_step.push_back(row);
       done = k;
       if (k % s.output_every == 0 || k == steps) frame(k);
@@ -183,10 +222,14 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     st["duration"] = s.duration;
     st["steps"] = per_step;
     st["steps_done"] = done;
+    st["stepping_seconds"] = std::chrono::duration<double>(Clock::now() - t_steps).count();  // frames included
     st["built"] = stats_json(sim.stats());
     if (result.ok) result.message = fmt::format("{} steps to t = {:.6g}", done, sim.time());
   }
-  if (options.write_frames) write_pvd((std::filesystem::path(out_dir) / (s.name + ".pvd")).string(), frames);
+  if (options.write_frames) {
+    write_pvd((std::filesystem::path(out_dir) / (s.name + ".pvd")).string(), frames);
+    if (emb) emb->write_pvd(out_dir, s.name);
+  }
   st["frames"] = frames.size();
   st["ok"] = result.ok;
   st["message"] = result.message;

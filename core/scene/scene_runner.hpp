@@ -7,6 +7,15 @@
 //   stats.json           per step: Newton and linear iterations, residual,
 //                        energies, seconds; at the end: totals and what was
 //                        built and how often (DynamicsStats)
+// Embedded scenes (scene.hpp) also write
+//   frame_00000_surface.vtu ...  the embedded surface (triangles) with its
+//                        displacement interpolated from the background
+//   <name>_surface.pvd   those frames
+// and their frames of the background carry each cell's volume_fraction; stats.json
+// gains "embedded" (cells cut / empty / dropped / stabilised, quadrature points
+// before and after simplification and their seconds, extrapolated surface
+// vertices: scene_embedding.hpp), and the per-step mean_displacement and lowest_z
+// are taken over the embedded surface's vertices instead of the mesh nodes.
 #include "scene/scene.hpp"
 
 #include <nlohmann/json.hpp>

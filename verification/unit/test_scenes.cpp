@@ -5,6 +5,7 @@
 #include "mesh/tube_mesh.hpp"
 #include "mesh/vtu_writer.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_embedding.hpp"
 #include "scene/scene_runner.hpp"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 
@@ -114,7 +116,8 @@ TEST(Scenes, BuiltInScenesAreValid) {
     if (entry.path().extension() != ".json") continue;
     EXPECT_NO_THROW({
       const Scene s = read_scene(entry.path().string());
-      if (s.mesh_file.empty()) build_scene_mesh(s);
+      if (s.mesh.file.empty()) build_scene_mesh(s);
+      if (s.embedded && s.embedded->shape.file.empty()) build_embedded_mesh(s);
     }) << entry.path();
     ++count;
   }
@@ -202,7 +205,9 @@ TEST(Scenes, ImplicitAndStaticRunsBuildOnlyWhatTheyNeed) {
   ASSERT_TRUE(r.ok) << r.message;
   EXPECT_EQ(r.stats["built"]["symbolic_analyses"].get<int>(), 1);
   EXPECT_EQ(r.stats["built"]["floor_evaluations"].get<int>(), 0);
-  EXPECT_EQ(r.stats["built"]["mass_matrices_built"].get<int>(), 1);
+  // Two, once each: over the free DOFs (Newton's matrix) and over all DOFs
+  // (kinetic energy and the coupling to prescribed nodes).
+  EXPECT_EQ(r.stats["built"]["mass_matrices_built"].get<int>(), 2);
   EXPECT_EQ(r.stats["built"]["polar_decompositions"].get<long long>(), 0);  // Neo-Hookean needs none
   // Corotated computes one per quadrature point and evaluation.
   Scene c = s;
@@ -218,6 +223,225 @@ TEST(Scenes, ImplicitAndStaticRunsBuildOnlyWhatTheyNeed) {
   EXPECT_EQ(r.stats["built"]["mass_matrices_built"].get<int>(), 0);
   EXPECT_EQ(r.stats["built"]["mass"].get<std::string>(), "none (static)");
   std::filesystem::remove_all(dir);
+}
+
+// ---------------------------------------------------------------------------
+// Embedded (finite cell) scenes.
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The tuples of a named Float64 DataArray of an ASCII .vtu written by write_vtu.
+Eigen::Matrix3Xd vtu_vectors(const std::string& text, const std::string& name) {
+  const size_t at = text.find("Name=\"" + name + "\"");
+  if (at == std::string::npos) throw std::runtime_error("no DataArray " + name);
+  const size_t begin = text.find('>', at) + 1, end = text.find("</DataArray>", begin);
+  std::istringstream in(text.substr(begin, end - begin));
+  std::vector<double> v;
+  for (double x; in >> x;) v.push_back(x);
+  return Eigen::Map<const Eigen::Matrix3Xd>(v.data(), 3, static_cast<Eigen::Index>(v.size() / 3));
+}
+
+// "/frame_0000k_surface.vtu", the embedded surface's frame k.
+std::string fmt_frame(int k) { return "/frame_0000" + std::to_string(k) + "_surface.vtu"; }
+
+const std::string kEmbeddedTiny =
+    (std::filesystem::path(HOFEM_SOURCE_DIR) / "verification/unit/data/scene_embedded_tiny.json").string();
+
+// The tiny scene: a tube (r 0.2-0.45, 1 x 12 x 2 generator cells: 144 tets)
+// in a 2 x 2 x 2 Hex8 grid over [-0.5, 0.5]^2 x [0, 1], bottom plane fixed, top
+// plane pushed down at 0.5 m/s for 3 steps of 0.01 s.
+TEST(Scenes, EmbeddedRunWritesTheSurfaceAndQuadratureFigures) {
+  const Scene s = read_scene(kEmbeddedTiny);
+  ASSERT_TRUE(s.embedded);
+  const std::string dir = temp_dir("embedded");
+  const SceneRunResult r = run_scene(s, dir);
+  ASSERT_TRUE(r.ok) << r.message;
+  const nlohmann::json& e = r.stats.at("embedded");
+  // Every octant of the grid holds a quarter of the tube's half (volume fraction
+  // ~0.5: far from full and from a sliver), so all 8 are cut and stabilised.
+  EXPECT_EQ(e["cells"]["cut"].get<int>(), 8);
+  EXPECT_EQ(e["cells"]["uncut"].get<int>(), 0);
+  EXPECT_EQ(e["cells"]["empty"].get<int>(), 0);
+  EXPECT_EQ(e["cells"]["dropped"].get<int>(), 0);
+  EXPECT_EQ(e["cells"]["stabilised"].get<int>(), 8);
+  // Simplification keeps at most C(4 + 3, 3) = 35 points of the degree-4 rule
+  // per cell, out of a clipped rule of several points per tet piece (18 tets per cell).
+  const auto& q = e["quadrature"];
+  EXPECT_EQ(q["stiffness_degree"].get<int>(), 4);
+  EXPECT_LE(q["points_after"].get<long long>(), 8 * 35);
+  EXPECT_LT(q["points_after"].get<long long>(), q["points_before"].get<long long>());
+  EXPECT_EQ(q["simplification_failures"].get<int>(), 0);
+  EXPECT_GT(q["generation_seconds"].get<double>(), 0.0);
+  // The clipped rules integrate 1 exactly: the cells hold the tube's volume up to rounding.
+  EXPECT_NEAR(e["geometry"]["volume_in_cells"].get<double>(), e["geometry"]["volume"].get<double>(),
+              1e-12 * e["geometry"]["volume"].get<double>());
+  EXPECT_EQ(e["surface_vertices_extrapolated"].get<int>(), 0);
+  // Surface of the tube mesh: inner and outer walls 2 x (12 x 2) triangles each,
+  // the end annuli 2 x 12 each; every vertex (2 radii x 12 x 3 levels) is on it.
+  EXPECT_EQ(e["geometry"]["surface_triangles"].get<int>(), 144);
+  EXPECT_EQ(e["geometry"]["surface_vertices"].get<int>(), 72);
+  for (int k = 0; k <= 3; ++k)
+    EXPECT_TRUE(std::filesystem::exists(dir + fmt_frame(k))) << k;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/embedded-tiny_surface.pvd"));
+  const std::string vtu = read_text(dir + fmt_frame(3));
+  EXPECT_NE(vtu.find("NumberOfPoints=\"72\" NumberOfCells=\"144\""), std::string::npos);
+  // The ends of the tube lie on the grid's end planes, where the prescribed
+  // nodes alone interpolate: a fixed plane gives 0 and a translated one exactly
+  // the translation (bilinear interpolation reproduces constants), whatever the
+  // interior does. At t = 0.03 the top has moved by 0.5 * 0.03 = 0.015 down.
+  const Eigen::Matrix3Xd X = vtu_vectors(vtu, "Points"), u = vtu_vectors(vtu, "displacement");
+  ASSERT_EQ(X.cols(), 72);
+  ASSERT_EQ(u.cols(), 72);
+  int ends = 0;
+  for (int i = 0; i < 72; ++i) {
+    if (X(2, i) == 0.0 || X(2, i) == 1.0) ++ends;
+    if (X(2, i) == 0.0) {
+      EXPECT_LT(u.col(i).norm(), 1e-14) << i;
+    } else if (X(2, i) == 1.0) {
+      EXPECT_LT((u.col(i) - Eigen::Vector3d(0, 0, -0.015)).norm(), 1e-14) << i;
+    } else {
+      // The middle level (z = 0.5) is free: compressed between the ends it moves
+      // down less than the top (-0.003 here: the wave has not crossed the tube,
+      // c = sqrt(E / rho) = 10 m/s) and bulges outwards (Poisson effect; ~1e-3).
+      EXPECT_GT(u(2, i), -0.015) << i;
+      EXPECT_LT(u(2, i), 0.0) << i;
+      EXPECT_GT(u(0, i) * X(0, i) + u(1, i) * X(1, i), 0.0) << i;
+    }
+  }
+  EXPECT_EQ(ends, 48);
+  std::filesystem::remove_all(dir);
+}
+
+// The surface follows the background exactly for fields the background
+// reproduces: an affine displacement is interpolated to rounding (1e-14 for
+// unit-sized coordinates); without simplification the points stay as clipped.
+TEST(Scenes, EmbeddedSurfaceFollowsTheBackground) {
+  Scene s = read_scene(kEmbeddedTiny);
+  const Mesh background = build_scene_mesh(s);
+  const SceneEmbedding embedding(s, background);
+  Eigen::Matrix3d A;
+  A << 0.1, -0.2, 0.05, 0.3, 0.0, -0.1, 0.02, 0.04, -0.3;
+  const Eigen::Vector3d b(0.01, -0.02, 0.03);
+  const Eigen::Matrix3Xd u_nodes = (A * background.nodes).colwise() + b;
+  const Eigen::VectorXd u = u_nodes.reshaped();
+  const Eigen::Matrix3Xd expected = (A * embedding.surface().nodes).colwise() + b;
+  EXPECT_LT((embedding.surface_displacement(u) - expected).cwiseAbs().maxCoeff(), 1e-14);
+
+  s.embedded->simplify = false;
+  const SceneEmbedding raw(s, background);
+  EXPECT_EQ(raw.stats()["quadrature"]["points_after"], raw.stats()["quadrature"]["points_before"]);
+  EXPECT_EQ(raw.stats()["quadrature"]["points_before"], embedding.stats()["quadrature"]["points_before"]);
+}
+
+// The tiny scene under gravity in a wider grid, [-1, 1]^2 x [0, 1] in 4 x 4 x 2
+// cells, static and dynamic: the outer ring of cells (every point at r >= 0.5 >
+// r_out) holds no material, so its free nodes carry no stiffness or mass and stay
+// exactly at rest - without the finite-cell rules the whole box would sag.
+TEST(Scenes, StaticAndDynamicEmbeddedRunsUseTheFiniteCellRules) {
+  const std::string base = read_text(kEmbeddedTiny);
+  for (const bool is_static : {true, false}) {
+    std::string text = base;
+    auto replace = [&](const std::string& from, const std::string& to) {
+      const size_t at = text.find(from);
+      if (at == std::string::npos) throw std::logic_error("tiny scene lacks '" + from + "'");
+      text.replace(at, from.size(), to);
+    };
+    replace(R"("dt": 0.01, "duration": 0.03,)", R"("dt": 0.01, "duration": 0.03, "gravity": [0, 0, -9.81],)");
+    if (is_static) replace(R"("implicit-euler", "dt": 0.01, "duration": 0.03,)", R"("static",)");
+    replace(R"("min": [-0.5, -0.5, 0], "max": [0.5, 0.5, 1], "cells": [2, 2, 2])",
+            R"("min": [-1, -1, 0], "max": [1, 1, 1], "cells": [4, 4, 2])");
+    replace(R"("velocity": [0, 0, -0.5]})", R"("velocity": [0, 0, -0.5], "until": 0.03})");
+    const Scene s = parse_scene(text, "wide.json");
+    const std::string dir = temp_dir("wide_embedded");
+    const SceneRunResult r = run_scene(s, dir);
+    ASSERT_TRUE(r.ok) << r.message;
+    EXPECT_EQ(r.stats["embedded"]["cells"]["empty"].get<int>(), 24);
+    EXPECT_EQ(r.stats["embedded"]["cells"]["cut"].get<int>(), 8);
+    const int last = is_static ? 0 : 3;
+    const std::string background = read_text(dir + "/frame_0000" + std::to_string(last) + ".vtu");
+    const Eigen::Matrix3Xd X = vtu_vectors(background, "Points"), u = vtu_vectors(background, "displacement");
+    ASSERT_EQ(X.cols(), 5 * 5 * 3);
+    // Largest displacement of the free level's (z = 0.5) nodes off / on the material's cells.
+    double outer = 0.0, inner = 0.0;
+    for (int i = 0; i < X.cols(); ++i) {
+      if (X(2, i) != 0.5) continue;
+      const bool ring = std::max(std::abs(X(0, i)), std::abs(X(1, i))) > 0.75;
+      (ring ? outer : inner) = std::max(ring ? outer : inner, u.col(i).norm());
+    }
+    EXPECT_EQ(outer, 0.0) << is_static;
+    // Static: gravity sags the tube on the ~rho g L^2 / E = 0.1 m scale; dynamic:
+    // it falls g t^2 / 2 = 4.4e-3 m in 0.03 s where nothing holds it.
+    EXPECT_GT(inner, 1e-3) << is_static;
+    // The top of the tube is at its prescribed place in the last surface frame.
+    const std::string surface = read_text(dir + fmt_frame(last));
+    const Eigen::Matrix3Xd Xs = vtu_vectors(surface, "Points"), us = vtu_vectors(surface, "displacement");
+    for (int i = 0; i < Xs.cols(); ++i) {
+      if (Xs(2, i) == 1.0) {
+        EXPECT_LT((us.col(i) - Eigen::Vector3d(0, 0, -0.015)).norm(), 1e-14) << i;
+      }
+    }
+    std::filesystem::remove_all(dir);
+  }
+}
+
+TEST(Scenes, InvalidEmbeddedInputNamesTheKey) {
+  const std::string base = read_text(kEmbeddedTiny);
+  auto edit = [&](const std::string& from, const std::string& to) {
+    std::string t = base;
+    const size_t at = t.find(from);
+    if (at == std::string::npos) throw std::logic_error("tiny scene lacks '" + from + "'");
+    return t.replace(at, from.size(), to);
+  };
+  const std::string tube = R"("tube": {"r_in": 0.2, "r_out": 0.45, "height": 1.0, "cells": [1, 12, 2]})";
+  struct Case {
+    std::string text, expected;
+  };
+  const Case cases[] = {
+      {edit(tube, tube + R"(, "stabilization": 1e-6)"),
+       "t.json: key 'embedded.stabilization' is unknown (valid: box, drop_fraction, file, simplify, stabilisation, "
+       "tube)"},
+      {edit(tube, tube + R"(, "stabilisation": -1e-6)"),
+       "t.json: embedded.stabilisation = -1e-06 is out of range [0, 1]"},
+      {edit(tube, tube + R"(, "drop_fraction": 1)"), "t.json: embedded.drop_fraction = 1 is out of range [0, 1)"},
+      {edit(tube, tube + R"(, "simplify": "yes")"), "t.json: embedded.simplify must be true or false"},
+      {edit(tube, tube + R"(, "file": "a.msh")"), "t.json: embedded needs exactly one of 'box', 'tube' and 'file'"},
+      {edit("\"r_in\": 0.2", "\"r_in\": -0.2"), "t.json: embedded.tube.r_in = -0.2 is out of range (0,"},
+      {edit(R"("box": {"min": [-0.5, -0.5, 0], "max": [0.5, 0.5, 1], "cells": [2, 2, 2]})",
+            R"("tube": {"r_in": 0.5, "r_out": 1, "height": 1, "cells": [1, 8, 1]})"),
+       "t.json: mesh.tube cannot be the background of an embedded scene"},
+  };
+  for (const Case& c : cases) {
+    const std::string e = error_of(c.text);
+    EXPECT_NE(e.find(c.expected), std::string::npos) << "expected: " << c.expected << "\n     got: " << e;
+  }
+  // Geometry files are checked when the run builds them, with the key that names them.
+  auto build_error = [&](const std::string& text) {
+    try {
+      const Scene s = parse_scene(text, "t.json");
+      const Mesh background = build_scene_mesh(s);
+      SceneEmbedding embedding(s, background);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::string e = build_error(edit(tube, R"("file": "/nonexistent/geometry.msh")"));
+  EXPECT_NE(e.find("t.json: embedded.file: "), std::string::npos) << e;
+  EXPECT_NE(e.find("/nonexistent/geometry.msh"), std::string::npos) << e;
+  const std::string hexes =
+      (std::filesystem::path(HOFEM_SOURCE_DIR) / "verification/unit/data/gmsh_hex8_v41.msh").string();
+  e = build_error(edit(tube, "\"file\": \"" + hexes + "\""));
+  EXPECT_NE(e.find("t.json: embedded.file: '" + hexes + "' is not a tetrahedral mesh"), std::string::npos) << e;
+  // A tube taller than the grid: a third of it would silently vanish.
+  e = build_error(edit("\"height\": 1.0", "\"height\": 1.5"));
+  EXPECT_NE(e.find("t.json: embedded: 33.3 % of the geometry's volume lies outside the background mesh"),
+            std::string::npos)
+      << e;
 }
 
 }  // namespace

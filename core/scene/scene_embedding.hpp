@@ -1,0 +1,60 @@
+#pragma once
+// The embedded (finite cell) part of a scene run, second seed §3.2, §5.3: built
+// once before stepping, then asked for the surface displacement each frame.
+//   - the finite-cell rules of the background over the embedded tetrahedra
+//     (cut cells' stiffness rules simplified unless the scene says not to),
+//     stabilised: slivers below drop_fraction dropped, the other cut cells given
+//     the full cell's Gauss points at weight `stabilisation`;
+//   - the embedded surface (boundary triangles of the tets) with its vertices
+//     located in the background cells that integrate something (null rule =
+//     uncut = active; a vertex in a dropped cell is extrapolated from the nearest
+//     active one);
+//   - what it cost and found, for stats.json (stats()).
+// The caller passes element_rules() to DynamicsOptions or StaticOptions; the
+// background mesh must outlive this object.
+#include "embedded/embedded_points.hpp"
+#include "embedded/finite_cell_quadrature.hpp"
+#include "scene/scene.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace hofem {
+
+class SceneEmbedding {
+ public:
+  /// Throws SceneError (naming the scene file and key) if the geometry cannot be
+  /// built, the background is not affine, or the geometry is not inside it.
+  SceneEmbedding(const Scene& scene, const Mesh& background);
+
+  ElementRules element_rules() const { return cells_.element_rules(); }
+  /// Cut cells under a volume fraction of 0.5: the blocks of the "schwarz" preconditioner (second seed §5.2).
+  std::vector<int> preconditioner_blocks() const { return schwarz_block_elements(cells_); }
+  /// Per background element: volume of (geometry ∩ cell) / cell volume.
+  const std::vector<double>& volume_fraction() const { return cells_.volume_fraction; }
+  /// The embedded surface's vertices carried by a background displacement
+  /// (3 * background nodes values): their displacements, 3 x surface vertices.
+  Eigen::Matrix3Xd surface_displacement(const Eigen::VectorXd& u) const;
+  const Mesh& surface() const { return surface_; }
+
+  /// Writes frame_NNNNN_surface.vtu (point field "displacement") into `dir` and
+  /// records it for write_pvd.
+  void write_frame(const std::string& dir, int frame, const Eigen::VectorXd& u, double t);
+  /// Writes <name>_surface.pvd listing the frames written.
+  void write_pvd(const std::string& dir, const std::string& name) const;
+  /// Geometry, cell counts, quadrature points and seconds, stabilisation, extrapolated vertices.
+  const nlohmann::json& stats() const { return stats_; }
+
+ private:
+  const Mesh& background_;
+  CellQuadrature cells_;
+  Mesh surface_;
+  EmbeddedPointMap surface_map_;
+  nlohmann::json stats_;
+  std::vector<std::pair<double, std::string>> frames_;
+};
+
+}  // namespace hofem
