@@ -250,7 +250,58 @@ def plot_fig10(report, out_dir):
     return out
 
 
-FIGURES = [("fig4", plot_fig4), ("fig5", plot_fig5), ("fig6", plot_fig6), ("fig10", plot_fig10)]
+# --- Benchmarks: quadrature point reduction and FEM vs FCM per step (BM_Fcm*, BM_ElasticStep) ---
+
+def benchmark_runs(directory):
+    """Finite-cell benchmark entries from benchmarks.json (main job) or benchmarks_fcm.json."""
+    for name in ("benchmarks.json", "benchmarks_fcm.json"):
+        path = directory / name
+        if path.exists():
+            runs = [b for b in load(path).get("benchmarks", [])
+                    if b["name"].startswith(("BM_FcmQuadrature", "BM_ElasticStep"))
+                    and b.get("aggregate_name", "median") == "median" and "error_occurred" not in b]
+            if runs:
+                return runs
+    return []
+
+
+def plot_benchmarks(report, out_dir):
+    runs = benchmark_runs(out_dir)
+    quad = [b for b in runs if b["name"].startswith("BM_FcmQuadrature")]
+    step = [b for b in runs if b["name"].startswith("BM_ElasticStep")]
+    if not quad and not step:
+        print("plot_fcm: benchmarks skipped: no BM_FcmQuadrature / BM_ElasticStep runs in benchmarks*.json")
+        return None
+    fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
+    labels = [q["name"].split("/")[0].replace("BM_FcmQuadrature_", "") for q in quad]
+    x = np.arange(len(quad))
+    a.bar(x - 0.2, [q["points_before"] for q in quad], 0.4, label="clipped (§4.5)")
+    a.bar(x + 0.2, [q["points_after"] for q in quad], 0.4, label="LP-simplified (§4.4)")
+    for i, q in enumerate(quad):
+        a.text(i, q["points_before"], f"{q['reduction']:.0f}x\n{q['generation_cpu_s']:.2f} s + "
+               f"{q['simplification_cpu_s']:.1f} s CPU", ha="center", va="bottom", fontsize=8)
+    a.set_xticks(x, labels)
+    a.set_yscale("log")
+    a.set_ylabel("stiffness quadrature points")
+    a.set_title("quadrature generation + simplification", fontsize=10)
+    a.legend(fontsize=8)
+    names = [s.get("label", s["name"]) for s in step]
+    ms = [s["real_time"] for s in step]
+    bars = b.barh(names, ms, color=["tab:blue", "tab:orange"][: len(step)])
+    for bar, s in zip(bars, step):
+        b.text(bar.get_width(), bar.get_y() + bar.get_height() / 2,
+               f" {s['cg_iterations_per_step']:.0f} CG its", va="center", fontsize=8)
+    b.set_xlabel("ms per implicit Euler step (median)")
+    b.set_title("FEM vs FCM per step (seed §6.5)", fontsize=10)
+    fig.tight_layout()
+    out = out_dir / "fcm_benchmarks.png"
+    fig.savefig(out, dpi=120)
+    plt.close(fig)
+    return out
+
+
+FIGURES = [("fig4", plot_fig4), ("fig5", plot_fig5), ("fig6", plot_fig6), ("fig10", plot_fig10),
+           ("benchmarks", plot_benchmarks)]
 
 
 def main():

@@ -177,6 +177,7 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
     out.rules[e] = make_rule(cell, p, std::move(xs), std::move(ws));
     out.mass_rules[e] = make_rule(cell, p, std::move(xm), std::move(wm));
   }
+  out.moment_residual = residual;
   for (int e = 0; e < ne; ++e) {
     out.points += out.points_before[e];
     out.simplified_points += out.points_after[e];

@@ -72,6 +72,8 @@ struct CellQuadrature {
   std::vector<double> volume_fraction;
   /// Per element: stiffness points before and after simplification (0 for uncut and empty cells).
   std::vector<int> points_before, points_after;
+  /// Per element: the LP simplification's relative moment residual (0 where not simplified).
+  std::vector<double> moment_residual;
   long long points = 0;             ///< stiffness points before simplification, summed over cut cells
   long long simplified_points = 0;  ///< ... after
   long long mass_points = 0;        ///< mass points over cut cells (after any simplification)
