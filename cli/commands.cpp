@@ -6,6 +6,8 @@
 #include "basis/reference_basis.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "assembly/distributed_dofs.hpp"
+#include "mesh/mesh_partition.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "mesh/mesh_upgrade.hpp"
 #include "mesh/vtu_writer.hpp"
@@ -140,15 +142,31 @@ int run_mesh(const MeshOptions& o) {
     for (int e = 0; e < m.num_elements(); ++e) ids(0, e) = e;
     write_vtu(o.vtu, m, {}, {{"element_id", ids}});
   }
+  if (o.partition < 0 || o.partition > m.num_elements())
+    throw UsageError(fmt::format("--partition: needs 1 .. {} parts (the elements), got {}", m.num_elements(), o.partition));
+  nlohmann::json partition;
+  if (o.partition > 0) {
+    const std::vector<int> part = partition_elements(m, o.partition);
+    const PartitionQuality pq = partition_quality(m, part, o.partition);
+    const DistributedDofs d = distribute_dofs(m, DofMap(m.num_nodes(), {}), part, o.partition);
+    std::vector<long long> halo;
+    for (int p = 0; p < o.partition; ++p) halo.push_back(d.halo_bytes(p));
+    partition = {{"parts", pq.parts},           {"method", "recursive coordinate bisection"},
+                 {"elements", pq.elements},     {"owned_nodes", pq.owned_nodes},
+                 {"ghost_nodes", pq.ghost_nodes}, {"cut_faces", pq.cut_faces},
+                 {"imbalance", pq.imbalance},   {"ghost_fraction", pq.ghost_fraction},
+                 {"halo_bytes_per_exchange", halo}};
+  }
   if (o.json) {
     nlohmann::json sets = nlohmann::json::object();
     for (const auto& [n, nodes] : m.node_sets) sets[n] = nodes.size();
-    fmt::print("{}\n", nlohmann::json{{"element", element}, {"nodes", m.num_nodes()}, {"elements", m.num_elements()},
-                                     {"node_sets", sets}, {"min_dihedral_degrees", q.min_dihedral_degrees},
-                                     {"max_dihedral_degrees", q.max_dihedral_degrees},
-                                     {"min_jacobian_ratio", q.min_jacobian_ratio}, {"worst_element", q.worst_element},
-                                     {"inverted_elements", q.inverted_elements}}
-                            .dump());
+    nlohmann::json out{{"element", element}, {"nodes", m.num_nodes()}, {"elements", m.num_elements()},
+                       {"node_sets", sets}, {"min_dihedral_degrees", q.min_dihedral_degrees},
+                       {"max_dihedral_degrees", q.max_dihedral_degrees},
+                       {"min_jacobian_ratio", q.min_jacobian_ratio}, {"worst_element", q.worst_element},
+                       {"inverted_elements", q.inverted_elements}};
+    if (!partition.is_null()) out["partition"] = partition;
+    fmt::print("{}\n", out.dump());
     return 0;
   }
   fmt::print("{}: {} nodes, {} elements\n", element, m.num_nodes(), m.num_elements());
@@ -157,6 +175,10 @@ int run_mesh(const MeshOptions& o) {
     fmt::print("  dihedral angles {:.2f} .. {:.2f} degrees\n", q.min_dihedral_degrees, q.max_dihedral_degrees);
   fmt::print("  min det J ratio {:.4f} (element {}), inverted elements {}\n", q.min_jacobian_ratio, q.worst_element,
              q.inverted_elements);
+  if (!partition.is_null())
+    fmt::print("  {} parts (RCB): elements {}, ghost nodes {}, cut faces {}, imbalance {:.3f}, ghost fraction {:.3f}\n",
+               o.partition, partition["elements"].dump(), partition["ghost_nodes"].dump(), partition["cut_faces"].get<int>(),
+               partition["imbalance"].get<double>(), partition["ghost_fraction"].get<double>());
   if (!o.vtu.empty()) fmt::print("  wrote {}\n", o.vtu);
   return 0;
 }

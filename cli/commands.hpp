@@ -36,6 +36,7 @@ struct MeshOptions {
   int order = kUnset;
   std::string vtu;
   bool json = false;
+  int partition = 0;  ///< > 0: also partition the elements into this many parts (RCB) and report the quality
 };
 int run_mesh(const MeshOptions& o);
 

@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   mesh->add_option("--order", meo.order, "Element order (box: any for tet, 1-2 for hex; msh: raise a linear mesh to it)");
   mesh->add_option("--vtu", meo.vtu, "Write the mesh to this .vtu file");
   mesh->add_flag("--json", meo.json, "Print JSON");
+  mesh->add_option("--partition", meo.partition, "Partition into K parts (recursive coordinate bisection) and report their quality");
 
   hofem::cli::MmsOptions mo;
   auto* mms = app.add_subcommand("mms", "Solve a manufactured-solution problem on the unit cube and print its errors");
