@@ -49,6 +49,7 @@ struct MmsOptions {
   std::string solver = "cholmod";
   bool json = false;
   std::string vtu;
+  bool distributed = false;  ///< over the MPI ranks (run under mpirun -np K); rank 0 prints
 };
 int run_mms(const MmsOptions& o);
 

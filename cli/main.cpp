@@ -57,6 +57,8 @@ int main(int argc, char** argv) {
   mms->add_flag("--perturbed", mo.perturbed, "Randomly perturb interior vertices (non-uniform mesh)");
   mms->add_option("--solver", mo.solver, "Linear solver: cholmod, umfpack, eigen-ldlt, hypre-pcg+amg, or <cg|cr|minres|gmres>+<none|jacobi|block-jacobi|ic0|amg|amg-nodal|amg-aggressive|pmg|schwarz>")->capture_default_str();
   mms->add_flag("--json", mo.json, "Print JSON");
+  mms->add_flag("--distributed", mo.distributed,
+                "Partition the elements over the MPI ranks and solve on hypre (mpirun -np K hofem mms ...; rank 0 prints)");
   mms->add_option("--vtu", mo.vtu, "Write the solution (displacement, exact displacement, L2 error per cell) to this .vtu");
 
   hofem::cli::VerifyOptions vo;

@@ -11,6 +11,7 @@
 // another rank (its ghost rows) are what crosses the network during assembly,
 // and the ghost rows' values are what each matrix-vector product receives.
 #include "assembly/dof_map.hpp"
+#include "basis/element_rules.hpp"
 #include "mesh/mesh.hpp"
 
 #include <vector>
@@ -30,5 +31,11 @@ struct DistributedDofs {
 
 /// Throws std::invalid_argument if `part` does not match the mesh or names a part outside [0, parts).
 DistributedDofs distribute_dofs(const Mesh& mesh, const DofMap& dofs, const std::vector<int>& part, int parts);
+
+/// Rules that make an Assembler integrate only the elements of part p (the
+/// others get empty rules: they contribute nothing), so the ordinary serial
+/// assembly produces one rank's share of a distributed system. `base` (e.g.
+/// finite-cell rules) is kept for the elements of p.
+ElementRules rules_of_part(const Mesh& mesh, const std::vector<int>& part, int p, const ElementRules& base = {});
 
 }  // namespace hofem

@@ -1,6 +1,11 @@
 #include "problem/static_elasticity.hpp"
 
+#include "assembly/distributed_dofs.hpp"
+#include "mesh/mesh_partition.hpp"
 #include "mesh/mesh_quality.hpp"
+#include "parallel/collectives.hpp"
+#include "parallel/mpi_runtime.hpp"
+#include "solver/distributed_system.hpp"
 
 #include <fmt/format.h>
 
@@ -34,12 +39,24 @@ StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, s
   const auto t0 = Clock::now();
   validate_mesh(mesh);  // inverted / degenerate elements are rejected with their index
   assembler_ = std::make_unique<Assembler>(mesh, dofs_, options_.quadrature_degree);
-  assembler_->set_element_rules(options_.element_rules);
-  solver_ = make_linear_solver(options_.linear_solver);
+  if (options_.distributed) {
+    // Issue 7: each rank assembles the elements of its part; hypre solves.
+    ensure_hypre();
+    int rank = 0, size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    part_ = partition_elements(mesh, size);
+    assembler_->set_element_rules(rules_of_part(mesh, part_, rank, options_.element_rules));
+    solver_ = std::make_unique<DistributedHypreSolver>(MPI_COMM_WORLD, distribute_dofs(mesh, dofs_, part_, size), dofs_);
+  } else {
+    assembler_->set_element_rules(options_.element_rules);
+    solver_ = make_linear_solver(options_.linear_solver);
+  }
   solver_->set_discretization(
       {&mesh_, &dofs_, options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr});
   const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * mesh.order + 2;
   f_ext_ = body_force ? assembler_->body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+  if (options_.distributed) sum_over_ranks(f_ext_, MPI_COMM_WORLD);
   if (options_.external_load.size() > 0) {
     if (options_.external_load.size() != f_ext_.size() || !options_.external_load.allFinite())
       throw std::invalid_argument(fmt::format("static problem: external_load needs {} finite entries (got {})",
@@ -66,7 +83,8 @@ void StaticElasticity::set_state(const Eigen::VectorXd& u_free) {
 double StaticElasticity::energy(const Eigen::VectorXd& u) {
   set_state(u);
   const auto t0 = Clock::now();
-  const double e = assembler_->energy(material_, x_);
+  double e = assembler_->energy(material_, x_);
+  if (options_.distributed) e = sum_over_ranks(e, MPI_COMM_WORLD);  // each rank integrated its own elements
   assembly_seconds_ += seconds_since(t0);
   return e - load_ * f_ext_.dot(u_full_);
 }
@@ -75,12 +93,23 @@ double StaticElasticity::gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) 
   set_state(u);
   const auto t0 = Clock::now();
   double e = std::numeric_limits<double>::infinity();
+  bool outside = false;
   try {
     e = assembler_->gradient(material_, x_, g_full_);
   } catch (const MaterialDomainError&) {
+    outside = true;
+  }
+  // Distributed: every rank learns whether any rank left the material's domain,
+  // so all return together (none waits in a collective the others skip).
+  if (options_.distributed) outside = any_rank(outside, MPI_COMM_WORLD);
+  if (outside) {
     g.setZero(dofs_.num_free());
     assembly_seconds_ += seconds_since(t0);
     return std::numeric_limits<double>::infinity();
+  }
+  if (options_.distributed) {
+    e = sum_over_ranks(e, MPI_COMM_WORLD);
+    sum_over_ranks(g_full_, MPI_COMM_WORLD);
   }
   assembly_seconds_ += seconds_since(t0);
   g = dofs_.restrict(g_full_ - load_ * f_ext_);
@@ -90,7 +119,19 @@ double StaticElasticity::gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) 
 void StaticElasticity::hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K, bool project) {
   set_state(u);
   const auto t0 = Clock::now();
-  assembler_->hessian(material_, x_, g_full_, K, project);
+  if (!options_.distributed) {
+    assembler_->hessian(material_, x_, g_full_, K, project);
+  } else {
+    bool outside = false;
+    try {
+      assembler_->hessian(material_, x_, g_full_, K, project);  // this rank's share of K
+    } catch (const MaterialDomainError&) {
+      outside = true;
+    }
+    if (any_rank(outside, MPI_COMM_WORLD))
+      throw MaterialDomainError("static problem: an element left the material's domain on some rank");
+    sum_over_ranks(g_full_, MPI_COMM_WORLD);
+  }
   assembly_seconds_ += seconds_since(t0);
   g = dofs_.restrict(g_full_ - load_ * f_ext_);
 }

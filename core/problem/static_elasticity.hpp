@@ -42,6 +42,13 @@ struct StaticOptions {
   /// Extra external load at full load factor, all 3 * num_nodes DOFs (e.g. surface
   /// tractions integrated by the caller); empty = none.
   Eigen::VectorXd external_load;
+  /// Distributed over the ranks of MPI_COMM_WORLD (issue 7): the elements are
+  /// partitioned (recursive coordinate bisection), each rank assembles its own,
+  /// energies and forces are summed over the ranks, and every linear solve runs
+  /// on hypre (PCG + BoomerAMG on the distributed IJ matrix; `linear_solver` is
+  /// then not used). With one rank (no mpirun) it is the same code path. Every
+  /// rank must construct and solve the problem (collective calls).
+  bool distributed = false;
   int max_load_halvings = 6;   ///< a failed load step is halved at most this many times in a row
   /// Tangent predictor at each load step: u += -K^-1 (dg/dload) dload, with K at
   /// the last converged state. Without it the prescribed boundary displacement
@@ -103,6 +110,7 @@ class StaticElasticity final : public NonlinearProblem {
   double assembly_seconds_ = 0.0;
   double setup_seconds_hint_ = 0.0;
   int predictor_iterations_ = 0;
+  std::vector<int> part_;  ///< distributed: the part (rank) of every element
 };
 
 }  // namespace hofem

@@ -45,6 +45,8 @@ struct MmsCase {
   bool perturbed = false;     ///< random interior-vertex perturbation (non-uniform mesh)
   std::string linear_solver = "cholmod";
   std::string vtu;            ///< if set, write the solution (displacement, error) to this .vtu file
+  /// Distributed over the MPI ranks (StaticOptions::distributed; linear_solver unused).
+  bool distributed = false;
 };
 
 struct MmsResult {
