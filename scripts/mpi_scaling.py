@@ -1,0 +1,78 @@
+#!/usr/bin/python3
+"""Strong scaling of `hofem mms --distributed` over MPI ranks (scripts/bench-mpi).
+
+    /usr/bin/python3 scripts/mpi_scaling.py OUT_DIR RANKS...
+
+For each case (Neo-Hookean manufactured solution, P1-P3 tets) and rank count,
+runs `mpirun -np K build/bin/hofem mms --distributed --json` three times and
+keeps the median wall time (the machines are noisy), and asks
+`hofem mesh --partition K --json` for the partition's halo: ghost nodes per
+rank and the bytes one matrix-vector product receives. Writes OUT_DIR/scaling.json
+(measured values only) and prints a table with speed-ups relative to one rank.
+"""
+import json
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+CASES = [  # (order, cubes per side): ~1e4 - 1e5 unknowns
+    (1, 24), (2, 14), (3, 9),
+]
+REPEATS = 3
+
+
+def run(cmd):
+    out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+    return json.loads(out.strip().splitlines()[-1])
+
+
+def mpirun(ranks, args):
+    # One OpenMP thread per rank: this measures MPI scaling, not threads (2 cores here).
+    return ["mpirun", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_NUM_THREADS=1", "-np", str(ranks),
+            "build/bin/hofem", *args]
+
+
+def main():
+    out_dir = Path(sys.argv[1] if len(sys.argv) > 1 else "reports/mpi")
+    ranks = [int(r) for r in sys.argv[2:]] or [1, 2]
+    out_dir.mkdir(parents=True, exist_ok=True)
+    rows = []
+    for order, n in CASES:
+        for k in ranks:
+            walls, result = [], None
+            for _ in range(REPEATS):
+                t0 = time.perf_counter()
+                result = run(mpirun(k, ["mms", "--problem", "neohookean", "--order", str(order), "--n", str(n),
+                                        "--distributed", "--json"]))
+                walls.append(time.perf_counter() - t0)
+            part = run(["build/bin/hofem", "mesh", "--box", str(n), "--cell", "tet", "--order", str(order),
+                        "--partition", str(k), "--json"])["partition"]
+            rows.append({
+                "order": order, "n": n, "ranks": k, "dofs": result["dofs"],
+                "wall_seconds_median": statistics.median(walls), "wall_seconds": walls,
+                "solve_seconds": result["solve_seconds"], "assembly_seconds": result["assembly_seconds"],
+                "setup_seconds": result["setup_seconds"], "newton_iterations": result["newton_iterations"],
+                "l2_error": result["l2_error"],
+                "ghost_nodes": part["ghost_nodes"], "halo_bytes_per_exchange": part["halo_bytes_per_exchange"],
+                "cut_faces": part["cut_faces"], "imbalance": part["imbalance"],
+            })
+            print(f"P{order} n={n} ranks={k}: {rows[-1]['dofs']} DOFs, median {rows[-1]['wall_seconds_median']:.2f} s, "
+                  f"Newton {result['newton_iterations']}, L2 {result['l2_error']:.6e}, "
+                  f"halo {max(part['halo_bytes_per_exchange'])} B", flush=True)
+    base = {(r["order"], r["n"]): r["wall_seconds_median"] for r in rows if r["ranks"] == ranks[0]}
+    for r in rows:
+        r["speedup_vs_first"] = base[(r["order"], r["n"])] / r["wall_seconds_median"]
+    (out_dir / "scaling.json").write_text(json.dumps({"cases": rows, "ranks": ranks, "repeats": REPEATS}, indent=1))
+    print(f"\n{'case':<10}{'DOFs':>9}" + "".join(f"{'K=' + str(k) + ' s':>10}" for k in ranks) + f"{'speed-up':>10}")
+    for order, n in CASES:
+        sel = {r["ranks"]: r for r in rows if r["order"] == order and r["n"] == n}
+        print(f"{'P' + str(order) + ' n=' + str(n):<10}{sel[ranks[0]]['dofs']:>9}"
+              + "".join(f"{sel[k]['wall_seconds_median']:>10.2f}" for k in ranks)
+              + f"{sel[ranks[-1]]['speedup_vs_first']:>10.2f}")
+    print(f"\nmpi_scaling: wrote {out_dir / 'scaling.json'}")
+
+
+if __name__ == "__main__":
+    main()
