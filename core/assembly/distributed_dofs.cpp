@@ -47,7 +47,8 @@ DistributedDofs distribute_dofs(const Mesh& mesh, const DofMap& dofs, const std:
   return d;
 }
 
-ElementRules rules_of_part(const Mesh& mesh, const std::vector<int>& part, int p, const ElementRules& base) {
+ElementRules rules_of_part(const Mesh& mesh, const std::vector<int>& part, int p, const ElementRules& base,
+                           bool mass_too) {
   if (static_cast<int>(part.size()) != mesh.num_elements())
     throw std::invalid_argument(fmt::format("rules_of_part: {} parts for {} elements", part.size(), mesh.num_elements()));
   const auto none = std::make_shared<const ElementQuadrature>(
@@ -56,12 +57,9 @@ ElementRules rules_of_part(const Mesh& mesh, const std::vector<int>& part, int p
   rules.stiffness.resize(mesh.num_elements());
   rules.mass.resize(mesh.num_elements());
   for (int e = 0; e < mesh.num_elements(); ++e) {
-    if (part[e] != p) {
-      rules.stiffness[e] = rules.mass[e] = none;
-      continue;
-    }
-    if (!base.stiffness.empty()) rules.stiffness[e] = base.stiffness[e];
-    if (!base.mass.empty()) rules.mass[e] = base.mass[e];
+    const bool mine = part[e] == p;
+    rules.stiffness[e] = !mine ? none : base.stiffness.empty() ? nullptr : base.stiffness[e];
+    rules.mass[e] = !mine && mass_too ? none : base.mass.empty() ? nullptr : base.mass[e];
   }
   return rules;
 }

@@ -36,6 +36,9 @@ DistributedDofs distribute_dofs(const Mesh& mesh, const DofMap& dofs, const std:
 /// others get empty rules: they contribute nothing), so the ordinary serial
 /// assembly produces one rank's share of a distributed system. `base` (e.g.
 /// finite-cell rules) is kept for the elements of p.
-ElementRules rules_of_part(const Mesh& mesh, const std::vector<int>& part, int p, const ElementRules& base = {});
+/// mass_too = false keeps every element's mass rule (replicated mass, as the
+/// distributed dynamics uses it).
+ElementRules rules_of_part(const Mesh& mesh, const std::vector<int>& part, int p, const ElementRules& base = {},
+                           bool mass_too = true);
 
 }  // namespace hofem

@@ -1,5 +1,11 @@
 #include "dynamics/dynamic_elasticity.hpp"
 
+#include "assembly/distributed_dofs.hpp"
+#include "mesh/mesh_partition.hpp"
+#include "parallel/collectives.hpp"
+#include "parallel/mpi_runtime.hpp"
+#include "solver/distributed_system.hpp"
+
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
@@ -66,7 +72,16 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
   // Consistent mass: N_i N_j has degree 2p on affine cells (2p per direction on hexes).
   mass_degree_ = 2 * mesh.order;
   assembler_ = std::make_unique<Assembler>(mesh_, dofs_, o.quadrature_degree);
-  assembler_->set_element_rules(o.element_rules);
+  if (o.distributed) {
+    if (o.integrator != Integrator::ImplicitEuler || o.rayleigh_beta > 0.0)
+      throw std::invalid_argument("dynamics: distributed runs support implicit Euler without stiffness damping (so far)");
+    ensure_hypre();
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
+    part_ = partition_elements(mesh_, ranks_);
+  }
+  assembler_->set_element_rules(o.distributed ? rules_of_part(mesh_, part_, rank_, o.element_rules, false)
+                                              : o.element_rules);
   if (mass_kind_ == MassKind::Lumped) {
     lumped_ = assembler_->lumped_mass(o.density, mass_degree_, lumping_);
     stats_.mass = lumping_ == MassLumping::RowSum ? "lumped (row-sum)" : "lumped (HRZ)";
@@ -120,7 +135,9 @@ void DynamicElasticity::ensure_consistent_mass() {
 
 void DynamicElasticity::ensure_linear_solver() {
   if (solver_) return;
-  solver_ = make_linear_solver(options_.linear_solver);
+  solver_ = options_.distributed ? std::unique_ptr<LinearSolver>(std::make_unique<DistributedHypreSolver>(
+                                       MPI_COMM_WORLD, distribute_dofs(mesh_, dofs_, part_, ranks_), dofs_))
+                                 : make_linear_solver(options_.linear_solver);
   solver_->set_discretization(
       {&mesh_, &dofs_, options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr});
   K_ = assembler_->new_matrix();
@@ -168,6 +185,11 @@ Eigen::VectorXd DynamicElasticity::mass_times(const Eigen::VectorXd& r) const {
   return consistent_mass_times(r);
 }
 
+double DynamicElasticity::elastic_energy(const Eigen::VectorXd& x) const {
+  const double e = assembler_->energy(material_, x);
+  return options_.distributed ? sum_over_ranks(e, MPI_COMM_WORLD) : e;
+}
+
 // The consistent mass over ALL DOFs (prescribed ones too: kinetic energy and the
 // coupling to prescribed accelerations), assembled once on first use: integrating
 // it again per product cost half of an embedded scene's run, whose cut cells carry
@@ -188,10 +210,10 @@ Energies DynamicElasticity::energies() {
   e.kinetic = 0.5 * v_.dot(mass_times(v_));
   const auto t0 = Clock::now();
   if (!rest_energy_) {
-    rest_energy_ = assembler_->energy(material_, Eigen::Map<const Eigen::VectorXd>(mesh_.nodes.data(), x_.size()));
+    rest_energy_ = elastic_energy(Eigen::Map<const Eigen::VectorXd>(mesh_.nodes.data(), x_.size()));
     ++stats_.energy_evaluations;
   }
-  e.elastic = assembler_->energy(material_, x_) - *rest_energy_;
+  e.elastic = elastic_energy(x_) - *rest_energy_;
   stats_.assembly_seconds += since(t0);
   ++stats_.energy_evaluations;
   e.gravity = -f_gravity_.dot(displacement());
@@ -293,7 +315,8 @@ void DynamicElasticity::release_due_motions() {
   ++stats_.releases;
   dofs_ = DofMap(mesh_.num_nodes(), constrained_nodes(motions_, mesh_.num_nodes(), unsupported_));
   assembler_ = std::make_unique<Assembler>(mesh_, dofs_, options_.quadrature_degree);
-  assembler_->set_element_rules(options_.element_rules);
+  assembler_->set_element_rules(options_.distributed ? rules_of_part(mesh_, part_, rank_, options_.element_rules, false)
+                                                     : options_.element_rules);
   moving_boundary_ = false;
   for (const PrescribedMotion& m : motions_) moving_boundary_ = moving_boundary_ || (m.moves() && !m.nodes.empty());
   if (mass_kind_ == MassKind::Consistent) {
@@ -327,7 +350,7 @@ StepReport DynamicElasticity::step() {
     double extent = (hi - lo).norm() + (x_ - X).cwiseAbs().maxCoeff();
     if (options_.floor) extent += std::abs(options_.floor->depth(lo));
     const double gravity_work = f_gravity_.cwiseAbs().sum() * extent;
-    const double elastic = assembler_->energy(material_, x_);
+    const double elastic = elastic_energy(x_);
     ++stats_.energy_evaluations;
     double boundary = 0.0;
     Eigen::VectorXd vb = Eigen::VectorXd::Zero(x_.size());

@@ -52,6 +52,13 @@ struct DynamicsOptions {
   /// schwarz_block_elements(); unset: every element.
   std::optional<std::vector<int>> preconditioner_blocks;
   std::string linear_solver = "cholmod";
+  /// Distributed over the ranks of MPI_COMM_WORLD (issue 7; implicit Euler
+  /// without stiffness damping so far): each rank integrates the elastic terms of
+  /// its own elements (recursive coordinate bisection), energies and forces are
+  /// summed over the ranks, the mass stays replicated (rank 0 adds it to the
+  /// matrix), and the linear solves run on hypre (PCG + BoomerAMG; linear_solver
+  /// unused). Every rank must construct and step the body.
+  bool distributed = false;
   NewtonOptions newton;
   /// Explicit runs stop as unstable when the mechanical energy exceeds this
   /// factor times its reference (initial energy, gravity and boundary work scales).
@@ -144,6 +151,10 @@ class DynamicElasticity {
   Eigen::VectorXd accelerations(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
   Eigen::VectorXd mass_times(const Eigen::VectorXd& r) const;
   Eigen::VectorXd consistent_mass_times(const Eigen::VectorXd& r) const;
+  /// Elastic energy of the whole body (summed over ranks when distributed).
+  double elastic_energy(const Eigen::VectorXd& x) const;
+  /// Distributed: this rank adds the replicated terms (mass, floor) to the matrix.
+  bool adds_replicated_terms() const { return rank_ == 0; }
   Eigen::VectorXd stiffness_times(const Eigen::VectorXd& x, const Eigen::VectorXd& w);
   void impose_motion(double t, Eigen::VectorXd& x, Eigen::VectorXd* v) const;
   double kinetic_energy() const;
@@ -166,6 +177,8 @@ class DynamicElasticity {
   MassKind mass_kind_;
   MassLumping lumping_;
   int mass_degree_;
+  int rank_ = 0, ranks_ = 1;
+  std::vector<int> part_;  ///< distributed: the rank of every element
   std::vector<int> unsupported_;  ///< finite-cell nodes without stiffness or mass (held at rest)
   DofMap dofs_;
   std::unique_ptr<Assembler> assembler_;

@@ -3,6 +3,8 @@
 // semi-implicit Baraff-Witkin step (one Newton iteration of it, linearised).
 #include "dynamics/dynamic_elasticity.hpp"
 
+#include "parallel/collectives.hpp"
+
 #include <fmt/format.h>
 
 #include <chrono>
@@ -47,7 +49,7 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
   double energy(const Eigen::VectorXd& y) override {
     set(y);
     const auto t0 = std::chrono::steady_clock::now();
-    const double psi = s_.assembler_->energy(s_.material_, x_);
+    const double psi = s_.elastic_energy(x_);
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.energy_evaluations;
     if (!std::isfinite(psi)) return std::numeric_limits<double>::infinity();
@@ -57,7 +59,21 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
     set(y);
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd g_all;
-    const double psi = s_.assembler_->gradient(s_.material_, x_, g_all);
+    double psi = 0.0;
+    if (!s_.options_.distributed) {
+      psi = s_.assembler_->gradient(s_.material_, x_, g_all);
+    } else {  // this rank's elements; every rank stops together if any left the material's domain
+      bool outside = false;
+      try {
+        psi = s_.assembler_->gradient(s_.material_, x_, g_all);
+      } catch (const MaterialDomainError&) {
+        outside = true;
+      }
+      if (any_rank(outside, MPI_COMM_WORLD))
+        throw MaterialDomainError("dynamics: an element left the material's domain on some rank");
+      psi = sum_over_ranks(psi, MPI_COMM_WORLD);
+      sum_over_ranks(g_all, MPI_COMM_WORLD);
+    }
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.gradient_evaluations;
     g = s_.dofs_.restrict(g_all - s_.f_gravity_ - floor_forces()) + quadratic_gradient(y);
@@ -67,10 +83,25 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
     set(y);
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd g_all;
-    s_.assembler_->hessian(s_.material_, x_, g_all, K, project);
+    if (!s_.options_.distributed) {
+      s_.assembler_->hessian(s_.material_, x_, g_all, K, project);
+    } else {
+      bool outside = false;
+      try {
+        s_.assembler_->hessian(s_.material_, x_, g_all, K, project);  // this rank's share of K
+      } catch (const MaterialDomainError&) {
+        outside = true;
+      }
+      if (any_rank(outside, MPI_COMM_WORLD))
+        throw MaterialDomainError("dynamics: an element left the material's domain on some rank");
+      sum_over_ranks(g_all, MPI_COMM_WORLD);
+    }
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.hessian_assemblies;
     g = s_.dofs_.restrict(g_all - s_.f_gravity_ - floor_forces()) + quadratic_gradient(y);
+    // Distributed: the replicated terms (floor, mass) go into one rank's share
+    // only, so that the ranks' shares sum to the whole matrix.
+    if (s_.options_.distributed && !s_.adds_replicated_terms()) return;
     if (s_.options_.floor) s_.options_.floor->add_hessian(x_, s_.dofs_, K);
     if (s_.mass_kind_ == MassKind::Consistent) {
       add_scaled(K, inertia_, s_.M_);
