@@ -18,6 +18,8 @@
 
 #include <fmt/format.h>
 #include <mpi.h>
+
+#include "parallel/mpi_runtime.hpp"
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -258,13 +260,21 @@ int run_scene_file(const RunOptions& o) {
   SceneRunOptions options;
   options.progress = true;
   options.write_frames = !o.no_frames;
+  options.distributed = o.distributed;
+  if (o.distributed) {
+    ensure_hypre();
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    options.progress = rank == 0;
+  }
   SceneRunResult r;
   try {
     r = run_scene(scene, o.out, options);
   } catch (const SceneError& e) {
     throw UsageError(e.what());
   }
-  fmt::print("{}: {} ({}) -> {}/stats.json\n", scene.name, r.ok ? "done" : "FAILED", r.message, o.out);
+  if (options.progress || !o.distributed)  // distributed: rank 0 reports
+    fmt::print("{}: {} ({}) -> {}/stats.json\n", scene.name, r.ok ? "done" : "FAILED", r.message, o.out);
   return r.ok ? 0 : 1;
 }
 

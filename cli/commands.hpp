@@ -65,6 +65,7 @@ struct RunOptions {
   std::string scene;
   std::string out;
   bool no_frames = false;
+  bool distributed = false;  ///< over the MPI ranks (mpirun -np K hofem run ... --distributed)
 };
 /// Exit status 0 when every step succeeded, 1 when a step failed (stats.json
 /// still written), 2 for an invalid scene (the message names the file and key).

@@ -73,6 +73,8 @@ int main(int argc, char** argv) {
   run->add_option("scene", ro.scene, "Scene file (JSON; scripts/scenes/ has the built-in ones)")->required();
   run->add_option("--out", ro.out, "Output directory")->required();
   run->add_flag("--no-frames", ro.no_frames, "Write stats.json only");
+  run->add_flag("--distributed", ro.distributed,
+                "Partition the elements over the MPI ranks (static and implicit-Euler scenes; mpirun -np K; rank 0 writes)");
 
   // CLI11 reports an unknown first word as "a subcommand is required"; name it instead.
   if (argc > 1 && argv[1][0] != '-') {

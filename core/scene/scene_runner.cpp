@@ -5,6 +5,9 @@
 #include "problem/static_elasticity.hpp"
 #include "scene/scene_embedding.hpp"
 
+#include "parallel/collectives.hpp"
+#include "parallel/mpi_runtime.hpp"
+
 #include <fmt/format.h>
 
 #include <chrono>
@@ -102,8 +105,20 @@ json stats_json(const DynamicsStats& st) {
 
 }  // namespace
 
-SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const SceneRunOptions& options) {
+SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const SceneRunOptions& input_options) {
   const auto t_start = Clock::now();
+  SceneRunOptions options = input_options;
+  int rank = 0;
+  if (options.distributed) {
+    ensure_hypre();
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  }
+  const bool writer = rank == 0;  // distributed: one rank writes
+  // Per-element values of a distributed run live on the rank of their element: summed, each is whole.
+  auto whole = [&](Eigen::VectorXd v) {
+    if (options.distributed) sum_over_ranks(v, MPI_COMM_WORLD);
+    return v;
+  };
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) throw SceneError(fmt::format("{}: cannot create the output directory '{}': {}", s.file, out_dir, ec.message()));
@@ -140,6 +155,7 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
       dirichlet.push_back({m.nodes, [position](const Eigen::Vector3d& X) { return Eigen::Vector3d(position(X, 1e300) - X); }});
     }
     StaticOptions so;
+    so.distributed = options.distributed;
     so.linear_solver = s.dynamics.linear_solver;
     so.newton = s.dynamics.newton;
     if (emb) {
@@ -155,9 +171,9 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     result.message = r.message;
     const Eigen::VectorXd u = problem.displacement();
     const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), u.size()) + u;
-    const Eigen::VectorXd density =
-        energy_density(problem.assembler().element_energies(*material, x), problem.assembler().element_volumes());
-    if (options.write_frames) write_frame(out_dir, 0, mesh, u, Eigen::VectorXd(), density, emb, frames, 0.0);
+    const Eigen::VectorXd density = energy_density(whole(problem.assembler().element_energies(*material, x)),
+                                                   whole(problem.assembler().element_volumes()));
+    if (options.write_frames && writer) write_frame(out_dir, 0, mesh, u, Eigen::VectorXd(), density, emb, frames, 0.0);
     st["built"] = {{"mass", "none (static)"},
                    {"mass_matrices_built", 0},
                    {"hessian_assemblies", r.newton_iterations},
@@ -174,6 +190,7 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
                    {"solve_seconds", r.solve_seconds}};
   } else {
     DynamicsOptions dynamics = s.dynamics;
+    dynamics.distributed = options.distributed;
     if (emb) {
       dynamics.element_rules = emb->element_rules();
       dynamics.preconditioner_blocks = emb->preconditioner_blocks();  // "schwarz": cut cells under 0.5 (§5.2)
@@ -181,11 +198,11 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     DynamicElasticity sim(mesh, *material, std::move(motions), std::move(dynamics));
     const Eigen::Vector3d v0 = s.initial_velocity;
     if (v0.squaredNorm() > 0.0) sim.set_velocity([v0](const Eigen::Vector3d&) { return v0; });
-    const Eigen::VectorXd volumes = sim.assembler().element_volumes();
+    const Eigen::VectorXd volumes = whole(sim.assembler().element_volumes());
     auto frame = [&](int k) {
       if (!options.write_frames) return;
-      const Eigen::VectorXd density =
-          energy_density(sim.assembler().element_energies(*material, sim.positions()), volumes);
+      const Eigen::VectorXd density = energy_density(whole(sim.assembler().element_energies(*material, sim.positions())), volumes);
+      if (!writer) return;
       write_frame(out_dir, k, mesh, sim.displacement(), sim.velocities(), density, emb, frames, sim.time());
     };
     if (is_explicit(s.dynamics.integrator)) st["stable_dt_estimate"] = sim.estimate_stable_dt();
@@ -226,6 +243,13 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     st["built"] = stats_json(sim.stats());
     if (result.ok) result.message = fmt::format("{} steps to t = {:.6g}", done, sim.time());
   }
+  st["ranks"] = 1;
+  if (options.distributed) {
+    int ranks = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    st["ranks"] = ranks;
+  }
+  if (!writer) return result;
   if (options.write_frames) {
     write_pvd((std::filesystem::path(out_dir) / (s.name + ".pvd")).string(), frames);
     if (emb) emb->write_pvd(out_dir, s.name);

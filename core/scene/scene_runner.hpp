@@ -27,6 +27,10 @@ namespace hofem {
 struct SceneRunOptions {
   bool progress = false;  ///< a progress bar on stderr
   bool write_frames = true;
+  /// Over the MPI ranks (issue 7; static scenes and implicit Euler): every rank
+  /// runs the scene on its part of the elements, rank 0 writes the frames and
+  /// stats.json (the state is replicated, so they are the whole body's).
+  bool distributed = false;
 };
 
 struct SceneRunResult {
