@@ -8,7 +8,7 @@ runs `mpirun -np K build/bin/hofem mms --distributed --json` three times and
 keeps the median wall time (the machines are noisy), and asks
 `hofem mesh --partition K --json` for the partition's halo: ghost nodes per
 rank and the bytes one matrix-vector product receives. Writes OUT_DIR/scaling.json
-(measured values only) and prints a table with speed-ups relative to one rank.
+(measured values only, with each rank's peak resident memory from GNU time) and prints a table with speed-ups relative to one rank.
 """
 import json
 import statistics
@@ -28,10 +28,24 @@ def run(cmd):
     return json.loads(out.strip().splitlines()[-1])
 
 
+RSS_PREFIX = "/tmp/hofem_mpi_rss"
+
+
+def run_with_rss(cmd):
+    """The JSON result and each rank's peak resident memory in bytes (GNU time's %M, KiB,
+    one file per rank: the ranks' stderr would interleave)."""
+    for old in Path("/tmp").glob("hofem_mpi_rss.*"):
+        old.unlink()
+    p = subprocess.run(cmd, check=True, capture_output=True, text=True)
+    rss = [int(f.read_text().split()[-1]) * 1024 for f in sorted(Path("/tmp").glob("hofem_mpi_rss.*"))]
+    return json.loads(p.stdout.strip().splitlines()[-1]), rss
+
+
 def mpirun(ranks, args):
     # One OpenMP thread per rank: this measures MPI scaling, not threads (2 cores here).
+    command = " ".join(["build/bin/hofem", *args])
     return ["mpirun", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_NUM_THREADS=1", "-np", str(ranks),
-            "build/bin/hofem", *args]
+            "sh", "-c", f'exec /usr/bin/time -f "%M" -o {RSS_PREFIX}.$OMPI_COMM_WORLD_RANK {command}']
 
 
 def main():
@@ -41,11 +55,11 @@ def main():
     rows = []
     for order, n in CASES:
         for k in ranks:
-            walls, result = [], None
+            walls, result, rss = [], None, []
             for _ in range(REPEATS):
                 t0 = time.perf_counter()
-                result = run(mpirun(k, ["mms", "--problem", "neohookean", "--order", str(order), "--n", str(n),
-                                        "--distributed", "--json"]))
+                result, rss = run_with_rss(mpirun(k, ["mms", "--problem", "neohookean", "--order", str(order), "--n",
+                                                      str(n), "--distributed", "--json"]))
                 walls.append(time.perf_counter() - t0)
             part = run(["build/bin/hofem", "mesh", "--box", str(n), "--cell", "tet", "--order", str(order),
                         "--partition", str(k), "--json"])["partition"]
@@ -57,6 +71,7 @@ def main():
                 "l2_error": result["l2_error"],
                 "ghost_nodes": part["ghost_nodes"], "halo_bytes_per_exchange": part["halo_bytes_per_exchange"],
                 "cut_faces": part["cut_faces"], "imbalance": part["imbalance"],
+                "peak_rss_bytes_per_rank": rss, "nodes": result["nodes"],
             })
             print(f"P{order} n={n} ranks={k}: {rows[-1]['dofs']} DOFs, median {rows[-1]['wall_seconds_median']:.2f} s, "
                   f"Newton {result['newton_iterations']}, L2 {result['l2_error']:.6e}, "
