@@ -18,6 +18,8 @@ double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+constexpr const char* kOutside = "dynamics: an element left the material's domain on some rank";
+
 // values(A) += s values(B) for matrices of one pattern.
 void add_scaled(SparseMatrix& A, double s, const SparseMatrix& B) {
   Eigen::Map<Eigen::VectorXd>(A.valuePtr(), A.nonZeros()) += s * Eigen::Map<const Eigen::VectorXd>(B.valuePtr(), B.nonZeros());
@@ -60,17 +62,10 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd g_all;
     double psi = 0.0;
-    if (!s_.options_.distributed) {
-      psi = s_.assembler_->gradient(s_.material_, x_, g_all);
-    } else {  // this rank's elements; every rank stops together if any left the material's domain
-      bool outside = false;
-      try {
-        psi = s_.assembler_->gradient(s_.material_, x_, g_all);
-      } catch (const MaterialDomainError&) {
-        outside = true;
-      }
-      if (any_rank(outside, MPI_COMM_WORLD))
-        throw MaterialDomainError("dynamics: an element left the material's domain on some rank");
+    const bool distributed = s_.options_.distributed;  // then: this rank's elements, summed
+    on_all_ranks_or_throw<MaterialDomainError>(distributed, MPI_COMM_WORLD, kOutside,
+                                               [&] { psi = s_.assembler_->gradient(s_.material_, x_, g_all); });
+    if (distributed) {
       psi = sum_over_ranks(psi, MPI_COMM_WORLD);
       sum_over_ranks(g_all, MPI_COMM_WORLD);
     }
@@ -83,19 +78,9 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
     set(y);
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd g_all;
-    if (!s_.options_.distributed) {
-      s_.assembler_->hessian(s_.material_, x_, g_all, K, project);
-    } else {
-      bool outside = false;
-      try {
-        s_.assembler_->hessian(s_.material_, x_, g_all, K, project);  // this rank's share of K
-      } catch (const MaterialDomainError&) {
-        outside = true;
-      }
-      if (any_rank(outside, MPI_COMM_WORLD))
-        throw MaterialDomainError("dynamics: an element left the material's domain on some rank");
-      sum_over_ranks(g_all, MPI_COMM_WORLD);
-    }
+    on_all_ranks_or_throw<MaterialDomainError>(s_.options_.distributed, MPI_COMM_WORLD, kOutside,
+                                               [&] { s_.assembler_->hessian(s_.material_, x_, g_all, K, project); });
+    if (s_.options_.distributed) sum_over_ranks(g_all, MPI_COMM_WORLD);
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.hessian_assemblies;
     g = s_.dofs_.restrict(g_all - s_.f_gravity_ - floor_forces()) + quadratic_gradient(y);

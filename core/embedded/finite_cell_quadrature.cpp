@@ -245,15 +245,4 @@ std::vector<int> schwarz_block_elements(const CellQuadrature& cells, double thre
   return out;
 }
 
-std::vector<int> active_nodes(const Mesh& background, const CellQuadrature& cells) {
-  std::vector<char> used(background.num_nodes(), 0);
-  for (int e = 0; e < background.num_elements(); ++e)
-    if (!cells.rules[e] || cells.rules[e]->rule.size() > 0)  // null: an uncut cell's standard rule
-      for (int i = 0; i < background.nodes_per_element(); ++i) used[background.elements(i, e)] = 1;
-  std::vector<int> nodes;
-  for (int n = 0; n < background.num_nodes(); ++n)
-    if (used[n]) nodes.push_back(n);
-  return nodes;
-}
-
 }  // namespace hofem

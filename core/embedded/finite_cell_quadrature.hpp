@@ -119,8 +119,5 @@ StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& c
 /// `threshold` (the seed: 0.5-0.7 work well; 0.5 in its §6.5). Ascending.
 std::vector<int> schwarz_block_elements(const CellQuadrature& cells, double threshold = 0.5);
 
-/// Nodes of the elements with a non-empty rule: the DOFs the finite-cell system
-/// has; the others carry no stiffness or mass and are left out (or extrapolated).
-std::vector<int> active_nodes(const Mesh& background, const CellQuadrature& cells);
 
 }  // namespace hofem

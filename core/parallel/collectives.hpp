@@ -15,4 +15,22 @@ void sum_over_ranks(Eigen::VectorXd& values, MPI_Comm comm);
 /// True on every rank if it is true on any.
 bool any_rank(bool flag, MPI_Comm comm);
 
+/// Runs f. Distributed: every rank then learns whether f threw E on any rank,
+/// and if so all throw E(what) together, so that none is left waiting in the
+/// next collective. Serial: f runs and its exceptions pass unchanged.
+template <class E, class F>
+void on_all_ranks_or_throw(bool distributed, MPI_Comm comm, const char* what, F&& f) {
+  if (!distributed) {
+    f();
+    return;
+  }
+  bool failed = false;
+  try {
+    f();
+  } catch (const E&) {
+    failed = true;
+  }
+  if (any_rank(failed, comm)) throw E(what);
+}
+
 }  // namespace hofem

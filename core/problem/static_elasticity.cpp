@@ -95,13 +95,11 @@ double StaticElasticity::gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) 
   double e = std::numeric_limits<double>::infinity();
   bool outside = false;
   try {
-    e = assembler_->gradient(material_, x_, g_full_);
+    on_all_ranks_or_throw<MaterialDomainError>(options_.distributed, MPI_COMM_WORLD, "outside the material's domain",
+                                               [&] { e = assembler_->gradient(material_, x_, g_full_); });
   } catch (const MaterialDomainError&) {
     outside = true;
   }
-  // Distributed: every rank learns whether any rank left the material's domain,
-  // so all return together (none waits in a collective the others skip).
-  if (options_.distributed) outside = any_rank(outside, MPI_COMM_WORLD);
   if (outside) {
     g.setZero(dofs_.num_free());
     assembly_seconds_ += seconds_since(t0);
@@ -119,19 +117,11 @@ double StaticElasticity::gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) 
 void StaticElasticity::hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K, bool project) {
   set_state(u);
   const auto t0 = Clock::now();
-  if (!options_.distributed) {
-    assembler_->hessian(material_, x_, g_full_, K, project);
-  } else {
-    bool outside = false;
-    try {
-      assembler_->hessian(material_, x_, g_full_, K, project);  // this rank's share of K
-    } catch (const MaterialDomainError&) {
-      outside = true;
-    }
-    if (any_rank(outside, MPI_COMM_WORLD))
-      throw MaterialDomainError("static problem: an element left the material's domain on some rank");
-    sum_over_ranks(g_full_, MPI_COMM_WORLD);
-  }
+  // Distributed: this rank's share of K; forces summed.
+  on_all_ranks_or_throw<MaterialDomainError>(options_.distributed, MPI_COMM_WORLD,
+                                             "static problem: an element left the material's domain on some rank",
+                                             [&] { assembler_->hessian(material_, x_, g_full_, K, project); });
+  if (options_.distributed) sum_over_ranks(g_full_, MPI_COMM_WORLD);
   assembly_seconds_ += seconds_since(t0);
   g = dofs_.restrict(g_full_ - load_ * f_ext_);
 }

@@ -1,5 +1,6 @@
 #include "scene/scene_embedding.hpp"
 
+#include "assembly/assembler.hpp"
 #include "embedded/embedded_quadrature.hpp"
 #include "mesh/vtu_writer.hpp"
 
@@ -77,7 +78,7 @@ SceneEmbedding::SceneEmbedding(const Scene& s, const Mesh& background) : backgro
   } catch (const std::invalid_argument& e) {  // every cell empty or dropped
     throw SceneError(fmt::format("{}: embedded: {}", s.file, e.what()));
   }
-  const int active_count = static_cast<int>(active_nodes(background, cells_).size());
+  const int active_count = background.num_nodes() - static_cast<int>(unsupported_nodes(background, cells_.element_rules()).size());
 
   stats_ = {
       {"geometry",

@@ -94,15 +94,6 @@ double DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
   h.parcsr = static_cast<HYPRE_ParCSRMatrix>(object);
   h.b.conform(h.parcsr);
   h.x.conform(h.parcsr);
-  local_nonzeros_ = 0;
-  for (HYPRE_BigInt r = lo; r <= hi; ++r) {
-    HYPRE_Int size = 0;
-    HYPRE_BigInt* c = nullptr;
-    double* v = nullptr;
-    hypre_check(HYPRE_ParCSRMatrixGetRow(h.parcsr, r, &size, &c, &v), "HYPRE_ParCSRMatrixGetRow");
-    local_nonzeros_ += size;
-    hypre_check(HYPRE_ParCSRMatrixRestoreRow(h.parcsr, r, &size, &c, &v), "HYPRE_ParCSRMatrixRestoreRow");
-  }
   BoomerAmgOptions options;  // 3 functions per node, HMIS + extended+i (boomeramg.hpp)
   h.amg = std::make_unique<BoomerAmg>(options);
   h.x.set_zero();
@@ -115,6 +106,21 @@ double DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
               "HYPRE_ParCSRPCGSetPrecond");
   hypre_check(HYPRE_ParCSRPCGSetup(h.pcg, h.parcsr, h.b.par(), h.x.par()), "HYPRE_ParCSRPCGSetup");
   return since(t0);
+}
+
+long long DistributedLinearSystem::local_nonzeros() const {
+  // Counted on demand (a statistic, not worth a pass over the rows per assembly).
+  if (!hypre_->parcsr) return 0;
+  long long count = 0;
+  for (HYPRE_BigInt r = rows_.first_row[rank_]; r < rows_.first_row[rank_ + 1]; ++r) {
+    HYPRE_Int size = 0;
+    HYPRE_BigInt* c = nullptr;
+    double* v = nullptr;
+    hypre_check(HYPRE_ParCSRMatrixGetRow(hypre_->parcsr, r, &size, &c, &v), "HYPRE_ParCSRMatrixGetRow");
+    count += size;
+    hypre_check(HYPRE_ParCSRMatrixRestoreRow(hypre_->parcsr, r, &size, &c, &v), "HYPRE_ParCSRMatrixRestoreRow");
+  }
+  return count;
 }
 
 DistributedSolveResult DistributedLinearSystem::assemble_and_solve(const SparseMatrix& K_local,

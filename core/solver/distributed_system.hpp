@@ -62,7 +62,7 @@ class DistributedLinearSystem {
   int rank() const { return rank_; }
   int size() const { return size_; }
   /// Nonzeros this rank stores of the assembled matrix (its rows).
-  long long local_nonzeros() const { return local_nonzeros_; }
+  long long local_nonzeros() const;
 
  private:
   struct Hypre;
@@ -71,7 +71,6 @@ class DistributedLinearSystem {
   DistributedDofs rows_;
   std::vector<int> row_of_free_;  ///< free index -> global row
   std::unique_ptr<Hypre> hypre_;
-  long long local_nonzeros_ = 0;
 };
 
 /// The LinearSolver face of a distributed system, for Newton and the problems
@@ -82,7 +81,7 @@ class DistributedHypreSolver final : public LinearSolver {
  public:
   DistributedHypreSolver(MPI_Comm comm, DistributedDofs rows, const DofMap& dofs);
   std::string_view name() const override { return "distributed hypre-pcg+amg"; }
-  void analyze(const SparseMatrix&) override { ++analyses_; }
+  void analyze(const SparseMatrix&) override {}  // hypre has no separate symbolic phase: nothing to count
   bool factorize(const SparseMatrix& A) override;
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
   void set_relative_tolerance(double rtol) override { rtol_ = rtol; }
