@@ -6,7 +6,6 @@
 #include "basis/reference_basis.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_reader.hpp"
-#include "assembly/distributed_dofs.hpp"
 #include "mesh/mesh_partition.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "mesh/mesh_upgrade.hpp"
@@ -151,9 +150,10 @@ int run_mesh(const MeshOptions& o) {
   if (o.partition > 0) {
     const std::vector<int> part = partition_elements(m, o.partition);
     const PartitionQuality pq = partition_quality(m, part, o.partition);
-    const DistributedDofs d = distribute_dofs(m, DofMap(m.num_nodes(), {}), part, o.partition);
-    std::vector<long long> halo;
-    for (int p = 0; p < o.partition; ++p) halo.push_back(d.halo_bytes(p));
+    // One double per ghost DOF (3 per ghost node) per exchange: a matrix-vector
+    // product's halo (parallel/halo.hpp sends exactly this).
+    nlohmann::json halo = nlohmann::json::array();
+    for (int p = 0; p < o.partition; ++p) halo.push_back(24LL * pq.ghost_nodes[p]);
     partition = {{"parts", pq.parts},           {"method", "recursive coordinate bisection"},
                  {"elements", pq.elements},     {"owned_nodes", pq.owned_nodes},
                  {"ghost_nodes", pq.ghost_nodes}, {"cut_faces", pq.cut_faces},

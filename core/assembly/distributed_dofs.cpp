@@ -4,64 +4,119 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <stdexcept>
 
 namespace hofem {
 
-DistributedDofs distribute_dofs(const Mesh& mesh, const DofMap& dofs, const std::vector<int>& part, int parts) {
-  if (static_cast<int>(part.size()) != mesh.num_elements() || dofs.num_dofs() != 3 * mesh.num_nodes())
-    throw std::invalid_argument(fmt::format("distribute_dofs: {} parts and {} DOFs for a mesh of {} elements, {} nodes",
-                                            part.size(), dofs.num_dofs(), mesh.num_elements(), mesh.num_nodes()));
-  for (int p : part)
-    if (p < 0 || p >= parts) throw std::invalid_argument(fmt::format("distribute_dofs: part {} outside [0, {})", p, parts));
-  const std::vector<int> owner = node_owners(mesh, part);
-  DistributedDofs d;
-  d.parts = parts;
-  d.first_row.assign(parts + 1, 0);
-  d.global_row.assign(dofs.num_dofs(), -1);
-  // Count each part's free DOFs, then number them part by part in DOF order.
-  for (int dof = 0; dof < dofs.num_dofs(); ++dof)
-    if (dofs.free_index(dof) >= 0 && owner[dof / 3] >= 0) ++d.first_row[owner[dof / 3] + 1];
-  for (int p = 0; p < parts; ++p) d.first_row[p + 1] += d.first_row[p];
-  std::vector<int> next(d.first_row.begin(), d.first_row.end() - 1);
-  for (int dof = 0; dof < dofs.num_dofs(); ++dof)
-    if (dofs.free_index(dof) >= 0 && owner[dof / 3] >= 0) d.global_row[dof] = next[owner[dof / 3]]++;
-  // Ghost rows per part.
-  d.ghost_rows.assign(parts, {});
-  std::vector<int> seen(mesh.num_nodes(), -1);
-  for (int e = 0; e < mesh.num_elements(); ++e) {
-    const int p = part[e];
-    for (int i = 0; i < mesh.nodes_per_element(); ++i) {
-      const int n = mesh.elements(i, e);
-      if (owner[n] == p || seen[n] == p) continue;
-      seen[n] = p;  // elements are not grouped by part, so a node may come back: the sort below removes repeats
-      for (int c = 0; c < 3; ++c)
-        if (const int row = d.global_row[3 * n + c]; row >= 0) d.ghost_rows[p].push_back(row);
-    }
-  }
-  for (auto& rows : d.ghost_rows) {
-    std::sort(rows.begin(), rows.end());
-    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-  }
-  return d;
+namespace {
+
+Halo node_halo(MPI_Comm comm, const LocalMesh& local) {
+  return Halo(comm, local.global_node, local.owner, 3);
 }
 
-ElementRules rules_of_part(const Mesh& mesh, const std::vector<int>& part, int p, const ElementRules& base,
-                           bool mass_too) {
-  if (static_cast<int>(part.size()) != mesh.num_elements())
-    throw std::invalid_argument(fmt::format("rules_of_part: {} parts for {} elements", part.size(), mesh.num_elements()));
-  const auto none = std::make_shared<const ElementQuadrature>(
-      make_element_quadrature(mesh.cell, mesh.order, Eigen::MatrixXd(3, 0), Eigen::VectorXd()));
-  ElementRules rules;
-  rules.stiffness.resize(mesh.num_elements());
-  rules.mass.resize(mesh.num_elements());
-  for (int e = 0; e < mesh.num_elements(); ++e) {
-    const bool mine = part[e] == p;
-    rules.stiffness[e] = !mine ? none : base.stiffness.empty() ? nullptr : base.stiffness[e];
-    rules.mass[e] = !mine && mass_too ? none : base.mass.empty() ? nullptr : base.mass[e];
+}  // namespace
+
+double DistributedMesh::sum(double value) const {
+  double total = 0.0;
+  MPI_Allreduce(&value, &total, 1, MPI_DOUBLE, MPI_SUM, comm);
+  return total;
+}
+
+namespace {
+
+// Gathers (id, block values) pairs to root and scatters them into a vector of
+// `total` blocks there.
+Eigen::VectorXd gather_blocks(MPI_Comm comm, int root, const std::vector<std::int64_t>& ids,
+                              const std::vector<double>& values, int block, std::int64_t total) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  const int count = static_cast<int>(ids.size());
+  std::vector<int> counts(ranks), displs(ranks + 1, 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm);
+  for (int q = 0; q < ranks; ++q) displs[q + 1] = displs[q] + counts[q];
+  std::vector<std::int64_t> all_ids(rank == root ? displs[ranks] : 0);
+  MPI_Gatherv(ids.data(), count, MPI_INT64_T, all_ids.data(), counts.data(), displs.data(), MPI_INT64_T, root, comm);
+  std::vector<int> vcounts(ranks), vdispls(ranks);
+  for (int q = 0; q < ranks; ++q) {
+    vcounts[q] = counts[q] * block;
+    vdispls[q] = displs[q] * block;
   }
-  return rules;
+  std::vector<double> all_values(rank == root ? static_cast<size_t>(displs[ranks]) * block : 0);
+  MPI_Gatherv(values.data(), count * block, MPI_DOUBLE, all_values.data(), vcounts.data(), vdispls.data(), MPI_DOUBLE,
+              root, comm);
+  if (rank != root) return {};
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(total * block);
+  for (size_t k = 0; k < all_ids.size(); ++k)
+    for (int c = 0; c < block; ++c) out[all_ids[k] * block + c] = all_values[k * block + c];
+  return out;
+}
+
+}  // namespace
+
+Eigen::VectorXd DistributedMesh::gather_nodal(const Eigen::VectorXd& v, int root) const {
+  if (v.size() != 3 * local.mesh.num_nodes())
+    throw std::invalid_argument(fmt::format("gather_nodal: {} values for {} nodes", v.size(), local.mesh.num_nodes()));
+  std::vector<std::int64_t> ids;
+  std::vector<double> values;
+  for (int n = 0; n < local.mesh.num_nodes(); ++n)
+    if (local.owns(n)) {  // each node once, from its owner
+      ids.push_back(local.global_node[n]);
+      for (int c = 0; c < 3; ++c) values.push_back(v[3 * n + c]);
+    }
+  return gather_blocks(comm, root, ids, values, 3, local.global_nodes);
+}
+
+Eigen::VectorXd DistributedMesh::gather_elemental(const Eigen::VectorXd& v, int root) const {
+  if (v.size() != local.mesh.num_elements())
+    throw std::invalid_argument(fmt::format("gather_elemental: {} values for {} elements", v.size(), local.mesh.num_elements()));
+  const std::vector<std::int64_t> ids(local.global_element.begin(), local.global_element.end());
+  return gather_blocks(comm, root, ids, std::vector<double>(v.data(), v.data() + v.size()), 1, local.global_elements);
+}
+
+DistributedMesh distribute_mesh(MPI_Comm comm, const Mesh& global) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  // RCB is deterministic, so every rank computes the same partition without
+  // communication; a run that reads a pre-partitioned mesh would start here.
+  LocalMesh local = extract_part(global, partition_elements(global, ranks), rank);
+  Halo halo = node_halo(comm, local);
+  return DistributedMesh{comm, rank, ranks, std::move(local), std::move(halo)};
+}
+
+DistributedDofs distribute_dofs(const DistributedMesh& dm, const DofMap& dofs) {
+  const LocalMesh& local = dm.local;
+  if (dofs.num_dofs() != 3 * local.mesh.num_nodes())
+    throw std::invalid_argument(fmt::format("distribute_dofs: a DOF map of {} DOFs for a piece of {} nodes",
+                                            dofs.num_dofs(), local.mesh.num_nodes()));
+  const int n = dofs.num_free();
+  std::vector<std::int64_t> ids(n);
+  std::vector<int> owner(n);
+  int owned = 0;
+  for (int i = 0; i < n; ++i) {
+    const int dof = dofs.free_dofs()[i], node = dof / 3;
+    ids[i] = 3 * local.global_node[node] + dof % 3;
+    owner[i] = local.owner[node];
+    owned += owner[i] == dm.rank;
+  }
+  DistributedDofs d{0, owned, 0, {}, Halo(dm.comm, ids, owner, 1)};
+  long long mine = owned, before = 0, total = 0;
+  MPI_Exscan(&mine, &before, 1, MPI_LONG_LONG, MPI_SUM, dm.comm);
+  if (dm.rank == 0) before = 0;  // MPI_Exscan leaves rank 0's result undefined
+  MPI_Allreduce(&mine, &total, 1, MPI_LONG_LONG, MPI_SUM, dm.comm);
+  d.first_row = before;
+  d.global_rows = total;
+  // Owned rows in local (= global node) order; ghosts receive theirs from the
+  // owner (a double holds any row below 2^53 exactly).
+  Eigen::VectorXd rows = Eigen::VectorXd::Constant(n, -1.0);
+  std::int64_t next = d.first_row;
+  for (int i = 0; i < n; ++i)
+    if (d.free.owned(i)) rows[i] = static_cast<double>(next++);
+  d.free.update_ghosts(rows);
+  d.row.resize(n);
+  for (int i = 0; i < n; ++i) d.row[i] = static_cast<std::int64_t>(rows[i]);
+  return d;
 }
 
 }  // namespace hofem

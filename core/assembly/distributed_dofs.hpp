@@ -1,44 +1,61 @@
 #pragma once
-// The row numbering distributed assembly needs (issue 7): hypre's IJ matrices
-// give each rank a contiguous range of global rows, so the free DOFs are
-// renumbered part by part: rank r owns rows [first_row[r], first_row[r+1]),
-// the DOFs of the nodes it owns (node_owners: the lowest part among a node's
-// elements), in node order, three per node. With one part this is exactly the
-// serial DofMap's free numbering, so serial and distributed runs assemble the
-// same matrix in the same row order.
+// A mesh distributed over MPI ranks, and the global numbering of its free DOFs
+// (issue 7).
 //
-// A rank assembles its own elements; their contributions to rows owned by
-// another rank (its ghost rows) are what crosses the network during assembly,
-// and the ghost rows' values are what each matrix-vector product receives.
+// DistributedMesh: each rank keeps only its piece (mesh/local_mesh.hpp: the
+// elements of its part, recursive coordinate bisection, and the nodes they
+// touch, owned or ghost) and the node halo that turns partial nodal sums into
+// full ones. Assembly, the DOF map, the sparsity pattern and every vector then
+// live on the piece: per-rank memory scales with N / ranks plus the halo.
+//
+// DistributedDofs: hypre's IJ matrices give each rank a contiguous range of
+// global rows, so the free DOFs of owned nodes are numbered rank by rank, in
+// global node order within a rank; ghosts learn their rows from their owners.
+// With one rank this is exactly the serial DofMap's free numbering, so serial
+// and distributed runs assemble the same matrix in the same row order.
 #include "assembly/dof_map.hpp"
-#include "basis/element_rules.hpp"
+#include "mesh/local_mesh.hpp"
 #include "mesh/mesh.hpp"
+#include "parallel/halo.hpp"
 
+#include <mpi.h>
+
+#include <cstdint>
 #include <vector>
 
 namespace hofem {
 
-struct DistributedDofs {
-  int parts = 1;
-  std::vector<int> first_row;                ///< parts + 1 entries; first_row[parts] = number of free DOFs
-  std::vector<int> global_row;               ///< per DOF (3 * num_nodes): its global row, -1 if constrained
-  std::vector<std::vector<int>> ghost_rows;  ///< per part: rows its elements touch that another part owns (ascending)
-  int owned_rows(int p) const { return first_row[p + 1] - first_row[p]; }
-  /// Bytes a part receives per halo exchange of one double per ghost row (a
-  /// matrix-vector product's communication volume).
-  long long halo_bytes(int p) const { return 8LL * static_cast<long long>(ghost_rows[p].size()); }
+struct DistributedMesh {
+  MPI_Comm comm = MPI_COMM_WORLD;
+  int rank = 0, ranks = 1;
+  LocalMesh local;
+  Halo nodes;  ///< over the local nodes, 3 values per node (vectors over all local DOFs)
+
+  const Mesh& mesh() const { return local.mesh; }
+  /// Sum over ranks of per-rank values (energies of each rank's elements).
+  double sum(double value) const;
+  /// Collective. A nodal field of the piece (3 values per local node,
+  /// consistent) gathered to `root` in global node order (3 per global node);
+  /// empty on the other ranks. For output: one VTU, one stats file.
+  Eigen::VectorXd gather_nodal(const Eigen::VectorXd& local, int root = 0) const;
+  /// Collective. Per-element values of the piece gathered to `root` in global element order.
+  Eigen::VectorXd gather_elemental(const Eigen::VectorXd& local, int root = 0) const;
 };
 
-/// Throws std::invalid_argument if `part` does not match the mesh or names a part outside [0, parts).
-DistributedDofs distribute_dofs(const Mesh& mesh, const DofMap& dofs, const std::vector<int>& part, int parts);
+/// Collective: partitions `global` over the ranks of comm (partition_elements)
+/// and keeps this rank's piece. Every rank passes the same global mesh.
+DistributedMesh distribute_mesh(MPI_Comm comm, const Mesh& global);
 
-/// Rules that make an Assembler integrate only the elements of part p (the
-/// others get empty rules: they contribute nothing), so the ordinary serial
-/// assembly produces one rank's share of a distributed system. `base` (e.g.
-/// finite-cell rules) is kept for the elements of p.
-/// mass_too = false keeps every element's mass rule (replicated mass, as the
-/// distributed dynamics uses it).
-ElementRules rules_of_part(const Mesh& mesh, const std::vector<int>& part, int p, const ElementRules& base = {},
-                           bool mass_too = true);
+struct DistributedDofs {
+  std::int64_t first_row = 0;    ///< this rank owns rows [first_row, first_row + owned_rows)
+  int owned_rows = 0;
+  std::int64_t global_rows = 0;  ///< free DOFs over all ranks
+  std::vector<std::int64_t> row; ///< per local free DOF: its global row
+  Halo free;                     ///< over the local free DOFs (vectors of Newton and the solver)
+};
+
+/// Collective. `dofs` is the DofMap of the local mesh; a node is constrained on
+/// every rank that has it or on none (constraints come from global node sets).
+DistributedDofs distribute_dofs(const DistributedMesh& mesh, const DofMap& dofs);
 
 }  // namespace hofem

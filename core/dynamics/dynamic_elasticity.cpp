@@ -1,10 +1,8 @@
 #include "dynamics/dynamic_elasticity.hpp"
 
 #include "assembly/distributed_dofs.hpp"
-#include "mesh/mesh_partition.hpp"
 #include "parallel/collectives.hpp"
 #include "parallel/mpi_runtime.hpp"
-#include "solver/distributed_system.hpp"
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
@@ -43,16 +41,47 @@ std::vector<int> constrained_nodes(const std::vector<PrescribedMotion>& motions,
 
 bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
 
+// Distributed runs (issue 7) keep only this rank's piece of the mesh.
+std::unique_ptr<DistributedMesh> piece_of(const Mesh& mesh, const DynamicsOptions& o) {
+  if (!o.distributed) return nullptr;
+  if (o.integrator != Integrator::ImplicitEuler || o.rayleigh_beta > 0.0)
+    throw std::invalid_argument("dynamics: distributed runs support implicit Euler without stiffness damping (so far)");
+  ensure_hypre();
+  validate(o.distributed_solver);
+  return std::make_unique<DistributedMesh>(distribute_mesh(MPI_COMM_WORLD, mesh));
+}
+
+// Prescribed node sets checked on the given mesh, then renumbered onto the piece.
+std::vector<PrescribedMotion> on_piece(std::vector<PrescribedMotion> motions, const Mesh& mesh,
+                                       const DistributedMesh* piece) {
+  constrained_nodes(motions, mesh.num_nodes(), {});  // throws for out-of-range or repeated nodes
+  if (piece)
+    for (PrescribedMotion& m : motions) m.nodes = to_local_nodes(piece->local, m.nodes);
+  return motions;
+}
+
 }  // namespace
 
 DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material, std::vector<PrescribedMotion> motions,
                                      DynamicsOptions options)
-    : mesh_(mesh),
+    : dist_(piece_of(mesh, options)),
+      mesh_(dist_ ? dist_->mesh() : mesh),
       material_(material),
-      motions_(std::move(motions)),
+      motions_(on_piece(std::move(motions), mesh, dist_.get())),
       options_(std::move(options)),
-      unsupported_(unsupported_nodes(mesh, options_.element_rules)),
-      dofs_(mesh.num_nodes(), constrained_nodes(motions_, mesh.num_nodes(), unsupported_)) {
+      // Finite cells: unsupported nodes are decided on the given mesh (a node
+      // this rank's elements leave unsupported may be another rank's to move).
+      unsupported_(dist_ ? to_local_nodes(dist_->local, unsupported_nodes(mesh, options_.element_rules))
+                         : unsupported_nodes(mesh, options_.element_rules)),
+      dofs_(mesh_.num_nodes(), constrained_nodes(motions_, mesh_.num_nodes(), unsupported_)) {
+  rules_ = options_.element_rules;
+  if (dist_) {
+    rules_.stiffness = restrict_to_elements(dist_->local, rules_.stiffness);
+    rules_.mass = restrict_to_elements(dist_->local, rules_.mass);
+    owned_nodes_.resize(mesh_.num_nodes());
+    for (int n = 0; n < mesh_.num_nodes(); ++n) owned_nodes_[n] = dist_->local.owns(n);
+  }
+  released_.assign(motions_.size(), 0);
   const DynamicsOptions& o = options_;
   if (!(o.dt > 0.0) || !std::isfinite(o.dt)) throw std::invalid_argument(fmt::format("dynamics: dt must be > 0 (got {})", o.dt));
   if (!(o.density > 0.0) || !std::isfinite(o.density))
@@ -72,21 +101,15 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
   // Consistent mass: N_i N_j has degree 2p on affine cells (2p per direction on hexes).
   mass_degree_ = 2 * mesh.order;
   assembler_ = std::make_unique<Assembler>(mesh_, dofs_, o.quadrature_degree);
-  if (o.distributed) {
-    if (o.integrator != Integrator::ImplicitEuler || o.rayleigh_beta > 0.0)
-      throw std::invalid_argument("dynamics: distributed runs support implicit Euler without stiffness damping (so far)");
-    ensure_hypre();
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
-    MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
-    part_ = partition_elements(mesh_, ranks_);
-  }
-  assembler_->set_element_rules(o.distributed ? rules_of_part(mesh_, part_, rank_, o.element_rules, false)
-                                              : o.element_rules);
+  assembler_->set_element_rules(rules_);
   if (mass_kind_ == MassKind::Lumped) {
     lumped_ = assembler_->lumped_mass(o.density, mass_degree_, lumping_);
     stats_.mass = lumping_ == MassLumping::RowSum ? "lumped (row-sum)" : "lumped (HRZ)";
     // Over the free DOFs: unsupported finite-cell nodes (constrained) have none.
-    const double min_mass = dofs_.num_free() > 0 ? dofs_.restrict(lumped_).minCoeff() : 1.0;
+    Eigen::VectorXd nodal = dofs_.restrict(lumped_);  // distributed: this rank's elements' share, completed here
+    complete_free(nodal);
+    double min_mass = nodal.size() > 0 ? nodal.minCoeff() : 1.0;
+    if (dist_) MPI_Allreduce(MPI_IN_PLACE, &min_mass, 1, MPI_DOUBLE, MPI_MIN, dist_->comm);
     if (min_mass <= 0.0)
       throw std::invalid_argument(fmt::format(
           "dynamics: {} lumping gives a non-positive nodal mass ({:.3e}) for order {}; use HRZ lumping or the "
@@ -101,14 +124,16 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
       ++stats_.mass_factorizations;
     }
   }
-  f_gravity_ = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+  // Distributed: this rank's elements' share (a partial sum, as every force
+  // vector here before complete_free()).
+  f_gravity_ = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
   if (o.gravity.squaredNorm() > 0.0) {
     const Eigen::Vector3d rho_g = o.density * o.gravity;
     f_gravity_ = assembler_->body_force_vector([&](const Eigen::Vector3d&) { return rho_g; }, mass_degree_);
   }
-  const double extent = (mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff()).norm();
+  const double extent = (mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff()).norm();  // the whole body
   elastic_force_scale_ = (2.0 * material.lame().mu + material.lame().lambda) * extent * extent;
-  x_ = Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), 3 * mesh.num_nodes());
+  x_ = Eigen::Map<const Eigen::VectorXd>(mesh_.nodes.data(), 3 * mesh_.num_nodes());
   v_ = Eigen::VectorXd::Zero(x_.size());
   for (const PrescribedMotion& m : motions_) moving_boundary_ = moving_boundary_ || m.moves();
   impose_motion(0.0, x_, &v_);
@@ -135,11 +160,14 @@ void DynamicElasticity::ensure_consistent_mass() {
 
 void DynamicElasticity::ensure_linear_solver() {
   if (solver_) return;
-  solver_ = options_.distributed ? std::unique_ptr<LinearSolver>(std::make_unique<DistributedHypreSolver>(
-                                       MPI_COMM_WORLD, distribute_dofs(mesh_, dofs_, part_, ranks_), dofs_))
-                                 : make_linear_solver(options_.linear_solver);
+  if (dist_) {
+    rows_ = std::make_unique<DistributedDofs>(distribute_dofs(*dist_, dofs_));
+    solver_ = make_distributed_solver(*rows_, options_.distributed_solver, mesh_, dofs_);
+  } else {
+    solver_ = make_linear_solver(options_.linear_solver);
+  }
   solver_->set_discretization(
-      {&mesh_, &dofs_, options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr});
+      {&mesh_, &dofs_, options_.preconditioner_blocks && !dist_ ? &*options_.preconditioner_blocks : nullptr});
   K_ = assembler_->new_matrix();
 }
 
@@ -186,8 +214,7 @@ Eigen::VectorXd DynamicElasticity::mass_times(const Eigen::VectorXd& r) const {
 }
 
 double DynamicElasticity::elastic_energy(const Eigen::VectorXd& x) const {
-  const double e = assembler_->energy(material_, x);
-  return options_.distributed ? sum_over_ranks(e, MPI_COMM_WORLD) : e;
+  return sum_over_ranks(assembler_->energy(material_, x));
 }
 
 // The consistent mass over ALL DOFs (prescribed ones too: kinetic energy and the
@@ -198,7 +225,7 @@ Eigen::VectorXd DynamicElasticity::consistent_mass_times(const Eigen::VectorXd& 
   if (M_all_.size() == 0) {
     const DofMap all(mesh_.num_nodes(), {});
     Assembler a(mesh_, all, options_.quadrature_degree);
-    a.set_element_rules(options_.element_rules);
+    a.set_element_rules(rules_);
     M_all_ = a.mass_matrix(options_.density, mass_degree_);
     ++stats_.mass_matrices_built;
   }
@@ -207,6 +234,8 @@ Eigen::VectorXd DynamicElasticity::consistent_mass_times(const Eigen::VectorXd& 
 
 Energies DynamicElasticity::energies() {
   Energies e;
+  // Distributed: the mass products are this rank's elements' share and the
+  // floor counts its owned nodes, so each term's sum over ranks is the body's.
   e.kinetic = 0.5 * v_.dot(mass_times(v_));
   const auto t0 = Clock::now();
   if (!rest_energy_) {
@@ -217,7 +246,12 @@ Energies DynamicElasticity::energies() {
   stats_.assembly_seconds += since(t0);
   ++stats_.energy_evaluations;
   e.gravity = -f_gravity_.dot(displacement());
-  if (options_.floor) e.floor = options_.floor->energy(x_);
+  if (options_.floor) e.floor = options_.floor->energy(x_, counted_nodes());
+  if (dist_) {
+    Eigen::Vector3d parts(e.kinetic, e.gravity, e.floor);
+    MPI_Allreduce(MPI_IN_PLACE, parts.data(), 3, MPI_DOUBLE, MPI_SUM, dist_->comm);
+    e.kinetic = parts[0], e.gravity = parts[1], e.floor = parts[2];
+  }
   return e;
 }
 
@@ -225,6 +259,7 @@ Eigen::Vector3d DynamicElasticity::linear_momentum() const {
   const Eigen::VectorXd p = mass_times(v_);
   Eigen::Vector3d P = Eigen::Vector3d::Zero();
   for (int i = 0; i < mesh_.num_nodes(); ++i) P += p.segment<3>(3 * i);
+  if (dist_) MPI_Allreduce(MPI_IN_PLACE, P.data(), 3, MPI_DOUBLE, MPI_SUM, dist_->comm);  // shares of M v
   return P;
 }
 
@@ -232,11 +267,12 @@ Eigen::Vector3d DynamicElasticity::angular_momentum() const {
   const Eigen::VectorXd p = mass_times(v_);
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
   for (int i = 0; i < mesh_.num_nodes(); ++i) L += x_.segment<3>(3 * i).cross(p.segment<3>(3 * i));
+  if (dist_) MPI_Allreduce(MPI_IN_PLACE, L.data(), 3, MPI_DOUBLE, MPI_SUM, dist_->comm);
   return L;
 }
 
 double DynamicElasticity::kinetic_energy() const {
-  return 0.5 * v_.dot(mass_times(v_));
+  return sum_over_ranks(0.5 * v_.dot(mass_times(v_)));
 }
 
 double DynamicElasticity::estimate_stable_dt(int iterations) {
@@ -305,18 +341,20 @@ void DynamicElasticity::implicit_euler_adaptive(StepReport& report, double h, in
 // A released node set becomes free: new DOF map, and with it a new assembler
 // (sparsity pattern), consistent mass and linear solver. Happens once per set.
 void DynamicElasticity::release_due_motions() {
+  // Decided by time, not by whether this rank has nodes of the set: the
+  // rebuild below is collective when distributed.
   bool any = false;
-  for (PrescribedMotion& m : motions_)
-    if (!m.nodes.empty() && t_ >= m.release - 1e-9 * options_.dt) {
-      m.nodes.clear();
-      any = true;
+  for (size_t k = 0; k < motions_.size(); ++k)
+    if (!released_[k] && t_ >= motions_[k].release - 1e-9 * options_.dt) {
+      released_[k] = 1;
+      any = any || !motions_[k].nodes.empty() || dist_;
+      motions_[k].nodes.clear();
     }
   if (!any) return;
   ++stats_.releases;
   dofs_ = DofMap(mesh_.num_nodes(), constrained_nodes(motions_, mesh_.num_nodes(), unsupported_));
   assembler_ = std::make_unique<Assembler>(mesh_, dofs_, options_.quadrature_degree);
-  assembler_->set_element_rules(options_.distributed ? rules_of_part(mesh_, part_, rank_, options_.element_rules, false)
-                                                     : options_.element_rules);
+  assembler_->set_element_rules(rules_);
   moving_boundary_ = false;
   for (const PrescribedMotion& m : motions_) moving_boundary_ = moving_boundary_ || (m.moves() && !m.nodes.empty());
   if (mass_kind_ == MassKind::Consistent) {
@@ -328,7 +366,7 @@ void DynamicElasticity::release_due_motions() {
     }
   }
   if (solver_) {
-    solver_.reset();  // a new pattern and DOF map: mesh-aware preconditioners start over
+    solver_.reset();  // a new pattern and DOF map: mesh-aware preconditioners start over (and global rows)
     ensure_linear_solver();
   }
   a_valid_ = false;
@@ -412,8 +450,14 @@ StepReport DynamicElasticity::step() {
     }
   }
   if (options_.floor && report.ok) {
-    for (int i = 0; i < mesh_.num_nodes(); ++i) stats_.contact_node_steps += options_.floor->depth(x_.segment<3>(3 * i)) > 0.0;
-    stats_.max_penetration = std::max(stats_.max_penetration, options_.floor->max_depth(x_));
+    int contacts = options_.floor->contacts(x_, counted_nodes());
+    double depth = options_.floor->max_depth(x_);
+    if (dist_) {
+      MPI_Allreduce(MPI_IN_PLACE, &contacts, 1, MPI_INT, MPI_SUM, dist_->comm);
+      MPI_Allreduce(MPI_IN_PLACE, &depth, 1, MPI_DOUBLE, MPI_MAX, dist_->comm);
+    }
+    stats_.contact_node_steps += contacts;
+    stats_.max_penetration = std::max(stats_.max_penetration, depth);
   }
   report.time = t_;
   report.seconds = since(t0);

@@ -12,12 +12,14 @@
 // internal forces); no contact work without a floor; the gravity load once.
 // DynamicsStats counts what was built and evaluated.
 #include "assembly/assembler.hpp"
+#include "assembly/distributed_dofs.hpp"
 #include "assembly/dof_map.hpp"
 #include "dynamics/floor_contact.hpp"
 #include "dynamics/integrator.hpp"
 #include "dynamics/prescribed_motion.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
+#include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/newton.hpp"
 
@@ -53,12 +55,17 @@ struct DynamicsOptions {
   std::optional<std::vector<int>> preconditioner_blocks;
   std::string linear_solver = "cholmod";
   /// Distributed over the ranks of MPI_COMM_WORLD (issue 7; implicit Euler
-  /// without stiffness damping so far): each rank integrates the elastic terms of
-  /// its own elements (recursive coordinate bisection), energies and forces are
-  /// summed over the ranks, the mass stays replicated (rank 0 adds it to the
-  /// matrix), and the linear solves run on hypre (PCG + BoomerAMG; linear_solver
-  /// unused). Every rank must construct and step the body.
+  /// without stiffness damping so far): each rank keeps its piece of the mesh
+  /// (recursive coordinate bisection; its elements with their owned and ghost
+  /// nodes) and integrates every element term (elastic, mass, gravity) of its
+  /// elements and every nodal term (floor) of its owned nodes; scalars are summed
+  /// over the ranks, force vectors completed by the halo, and the linear solves
+  /// run on hypre (`distributed_solver`; linear_solver unused). Prescribed node
+  /// sets and element rules are given on the global mesh; positions, velocities
+  /// and displacements are then those of mesh(), this rank's piece. Every rank
+  /// must construct and step the body.
   bool distributed = false;
+  DistributedSolverOptions distributed_solver;
   NewtonOptions newton;
   /// Explicit runs stop as unstable when the mechanical energy exceeds this
   /// factor times its reference (initial energy, gravity and boundary work scales).
@@ -141,7 +148,11 @@ class DynamicElasticity {
   const DynamicsOptions& options() const { return options_; }
   const DofMap& dofs() const { return dofs_; }
   const Assembler& assembler() const { return *assembler_; }
+  /// The mesh the body lives on: the given one, or (distributed) this rank's piece.
   const Mesh& mesh() const { return mesh_; }
+  /// Distributed runs: the piece, its halo and the global numbering; else null.
+  const DistributedMesh* distributed_mesh() const { return dist_.get(); }
+  const DistributedDofs* distributed_dofs() const { return rows_.get(); }
 
  private:
   class IncrementalPotential;
@@ -153,8 +164,14 @@ class DynamicElasticity {
   Eigen::VectorXd consistent_mass_times(const Eigen::VectorXd& r) const;
   /// Elastic energy of the whole body (summed over ranks when distributed).
   double elastic_energy(const Eigen::VectorXd& x) const;
-  /// Distributed: this rank adds the replicated terms (mass, floor) to the matrix.
-  bool adds_replicated_terms() const { return rank_ == 0; }
+  // Distributed runs (identities otherwise): sums over ranks of per-rank
+  // values; a free-DOF vector of partial sums completed; the nodes whose nodal
+  // terms this rank counts (null: all).
+  double sum_over_ranks(double value) const { return dist_ ? dist_->sum(value) : value; }
+  void complete_free(Eigen::VectorXd& partial) const {
+    if (rows_) rows_->free.sum(partial);
+  }
+  const std::vector<char>* counted_nodes() const { return dist_ ? &owned_nodes_ : nullptr; }
   Eigen::VectorXd stiffness_times(const Eigen::VectorXd& x, const Eigen::VectorXd& w);
   void impose_motion(double t, Eigen::VectorXd& x, Eigen::VectorXd* v) const;
   double kinetic_energy() const;
@@ -170,15 +187,18 @@ class DynamicElasticity {
   void release_due_motions();
   void ensure_consistent_mass();
 
-  const Mesh& mesh_;
+  std::unique_ptr<DistributedMesh> dist_;  ///< distributed: this rank's piece (before mesh_, which refers to it)
+  const Mesh& mesh_;                       ///< the given mesh, or the piece
+  std::unique_ptr<DistributedDofs> rows_;  ///< distributed: global rows of the free DOFs (rebuilt with the DOF map)
+  std::vector<char> owned_nodes_;          ///< distributed: per node of the piece, 1 if this rank owns it
   const Material& material_;
   std::vector<PrescribedMotion> motions_;
   DynamicsOptions options_;
   MassKind mass_kind_;
   MassLumping lumping_;
   int mass_degree_;
-  int rank_ = 0, ranks_ = 1;
-  std::vector<int> part_;  ///< distributed: the rank of every element
+  ElementRules rules_;            ///< options_.element_rules on mesh_ (restricted to the piece)
+  std::vector<char> released_;    ///< per motion: released (every rank alike, whether or not it has its nodes)
   std::vector<int> unsupported_;  ///< finite-cell nodes without stiffness or mass (held at rest)
   DofMap dofs_;
   std::unique_ptr<Assembler> assembler_;

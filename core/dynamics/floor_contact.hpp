@@ -16,6 +16,8 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 namespace hofem {
 
 struct Floor {
@@ -25,15 +27,20 @@ struct Floor {
 
   /// Penetration depth of position p (> 0 below the floor).
   double depth(const Eigen::Vector3d& p) const { return height - normal.dot(p); }
+  // `only`: the nodes to count (a distributed run's owned nodes, so that each
+  // node's term enters the sums over ranks once); null: every node.
   /// Sum over nodes of 1/2 k d^2 (x: 3 per node).
-  double energy(const Eigen::VectorXd& x) const;
+  double energy(const Eigen::VectorXd& x, const std::vector<char>* only = nullptr) const;
   /// Adds the penalty forces k d n to f (all DOFs); returns the number of nodes in contact.
-  int add_forces(const Eigen::VectorXd& x, Eigen::VectorXd& f) const;
+  int add_forces(const Eigen::VectorXd& x, Eigen::VectorXd& f, const std::vector<char>* only = nullptr) const;
   /// Adds k n n^T of every node in contact to K over the free DOFs (K's pattern
   /// has every node's 3x3 block).
-  void add_hessian(const Eigen::VectorXd& x, const DofMap& dofs, SparseMatrix& K) const;
+  void add_hessian(const Eigen::VectorXd& x, const DofMap& dofs, SparseMatrix& K,
+                   const std::vector<char>* only = nullptr) const;
   /// Largest penetration depth over the nodes (0 if none).
   double max_depth(const Eigen::VectorXd& x) const;
+  /// Nodes in contact.
+  int contacts(const Eigen::VectorXd& x, const std::vector<char>* only = nullptr) const;
 };
 
 }  // namespace hofem

@@ -48,46 +48,45 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
   }
   int size() const override { return s_.dofs_.num_free(); }
 
+  // Distributed (issue 7): every term below is this rank's share (its elements,
+  // its owned nodes' floor terms), so one sum over ranks gives the energy and one
+  // halo sum the gradient.
   double energy(const Eigen::VectorXd& y) override {
     set(y);
     const auto t0 = std::chrono::steady_clock::now();
-    const double psi = s_.elastic_energy(x_);
+    const double psi = s_.assembler_->energy(s_.material_, x_);
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.energy_evaluations;
-    if (!std::isfinite(psi)) return std::numeric_limits<double>::infinity();
-    return psi + quadratic(y) + floor_energy();
+    const double e = s_.sum_over_ranks(std::isfinite(psi) ? psi + quadratic(y) + floor_energy()
+                                                          : std::numeric_limits<double>::infinity());
+    return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
   }
   double gradient(const Eigen::VectorXd& y, Eigen::VectorXd& g) override {
     set(y);
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd g_all;
     double psi = 0.0;
-    const bool distributed = s_.options_.distributed;  // then: this rank's elements, summed
-    on_all_ranks_or_throw<MaterialDomainError>(distributed, MPI_COMM_WORLD, kOutside,
+    on_all_ranks_or_throw<MaterialDomainError>(s_.dist_ != nullptr, MPI_COMM_WORLD, kOutside,
                                                [&] { psi = s_.assembler_->gradient(s_.material_, x_, g_all); });
-    if (distributed) {
-      psi = sum_over_ranks(psi, MPI_COMM_WORLD);
-      sum_over_ranks(g_all, MPI_COMM_WORLD);
-    }
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.gradient_evaluations;
     g = s_.dofs_.restrict(g_all - s_.f_gravity_ - floor_forces()) + quadratic_gradient(y);
-    return psi + quadratic(y) + floor_energy();
+    s_.complete_free(g);
+    return s_.sum_over_ranks(psi + quadratic(y) + floor_energy());
   }
   void hessian(const Eigen::VectorXd& y, Eigen::VectorXd& g, SparseMatrix& K, bool project) override {
     set(y);
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd g_all;
-    on_all_ranks_or_throw<MaterialDomainError>(s_.options_.distributed, MPI_COMM_WORLD, kOutside,
+    on_all_ranks_or_throw<MaterialDomainError>(s_.dist_ != nullptr, MPI_COMM_WORLD, kOutside,
                                                [&] { s_.assembler_->hessian(s_.material_, x_, g_all, K, project); });
-    if (s_.options_.distributed) sum_over_ranks(g_all, MPI_COMM_WORLD);
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.hessian_assemblies;
     g = s_.dofs_.restrict(g_all - s_.f_gravity_ - floor_forces()) + quadratic_gradient(y);
-    // Distributed: the replicated terms (floor, mass) go into one rank's share
-    // only, so that the ranks' shares sum to the whole matrix.
-    if (s_.options_.distributed && !s_.adds_replicated_terms()) return;
-    if (s_.options_.floor) s_.options_.floor->add_hessian(x_, s_.dofs_, K);
+    s_.complete_free(g);
+    // Distributed: K is this rank's share (its elements' mass and stiffness, its
+    // owned nodes' floor blocks); hypre sums the shares.
+    if (s_.options_.floor) s_.options_.floor->add_hessian(x_, s_.dofs_, K, s_.counted_nodes());
     if (s_.mass_kind_ == MassKind::Consistent) {
       add_scaled(K, inertia_, s_.M_);
     } else {
@@ -104,8 +103,13 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
   // (~eps (2 mu + lambda) |x| h_e per node) when the body comes to rest.
   double force_scale(const Eigen::VectorXd& g0) const override {
     const double h = s_.options_.dt;
-    const double inertial = mass_free(z_tilde_).norm() / (h * h);
-    return std::max({g0.norm(), s_.dofs_.restrict(s_.f_gravity_).norm(), inertial, s_.elastic_force_scale_});
+    Eigen::VectorXd inertial = mass_free(z_tilde_), gravity = s_.dofs_.restrict(s_.f_gravity_);
+    s_.complete_free(inertial);  // shares -> whole forces before their norms
+    s_.complete_free(gravity);
+    return std::max({norm(g0), norm(gravity), norm(inertial) / (h * h), s_.elastic_force_scale_});
+  }
+  double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const override {
+    return s_.rows_ ? s_.rows_->free.dot(a, b) : a.dot(b);
   }
 
  private:
@@ -136,13 +140,13 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
   double floor_energy() const {
     if (!s_.options_.floor) return 0.0;
     ++s_.stats_.floor_evaluations;
-    return s_.options_.floor->energy(x_);
+    return s_.options_.floor->energy(x_, s_.counted_nodes());
   }
   Eigen::VectorXd floor_forces() const {
     Eigen::VectorXd f = Eigen::VectorXd::Zero(x_.size());
     if (s_.options_.floor) {
       ++s_.stats_.floor_evaluations;
-      s_.options_.floor->add_forces(x_, f);
+      s_.options_.floor->add_forces(x_, f, s_.counted_nodes());
     }
     return f;
   }

@@ -1,11 +1,8 @@
 #include "problem/static_elasticity.hpp"
 
-#include "assembly/distributed_dofs.hpp"
-#include "mesh/mesh_partition.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "parallel/collectives.hpp"
 #include "parallel/mpi_runtime.hpp"
-#include "solver/distributed_system.hpp"
 
 #include <fmt/format.h>
 
@@ -31,62 +28,86 @@ std::vector<int> constrained_nodes(const std::vector<DirichletCondition>& bcs, s
 
 StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, std::vector<DirichletCondition> dirichlet,
                                    VectorField body_force, StaticOptions options)
-    : mesh_(mesh),
-      material_(material),
-      dirichlet_(std::move(dirichlet)),
-      options_(std::move(options)),
-      dofs_(mesh.num_nodes(), constrained_nodes(dirichlet_, unsupported_nodes(mesh, options_.element_rules))) {
+    : mesh_(mesh), material_(material), dirichlet_(std::move(dirichlet)), options_(std::move(options)) {
   const auto t0 = Clock::now();
+  // On the given mesh, so that messages name its element indices (and every
+  // rank of a distributed run fails alike, none left waiting in a collective).
   validate_mesh(mesh);  // inverted / degenerate elements are rejected with their index
-  assembler_ = std::make_unique<Assembler>(mesh, dofs_, options_.quadrature_degree);
+  for (const auto& bc : dirichlet_)
+    for (int n : bc.nodes)
+      if (n < 0 || n >= mesh.num_nodes())
+        throw std::invalid_argument(
+            fmt::format("static problem: Dirichlet node {} is out of range (the mesh has {} nodes)", n, mesh.num_nodes()));
+  // Finite cells: nodes no element integrates, decided on the global mesh (a
+  // node a rank's own elements leave unsupported may be supported by another's).
+  std::vector<int> constrained = constrained_nodes(dirichlet_, unsupported_nodes(mesh, options_.element_rules));
+  ElementRules rules = options_.element_rules;
+  Eigen::VectorXd external = options_.external_load;
+  if (external.size() > 0 && (external.size() != 3 * mesh.num_nodes() || !external.allFinite()))
+    throw std::invalid_argument(fmt::format("static problem: external_load needs {} finite entries (got {})",
+                                            3 * mesh.num_nodes(), external.size()));
   if (options_.distributed) {
-    // Issue 7: each rank assembles the elements of its part; hypre solves.
+    // Issue 7: from here on this rank sees only its piece of the mesh.
     ensure_hypre();
-    int rank = 0, size = 1;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    part_ = partition_elements(mesh, size);
-    assembler_->set_element_rules(rules_of_part(mesh, part_, rank, options_.element_rules));
-    solver_ = std::make_unique<DistributedHypreSolver>(MPI_COMM_WORLD, distribute_dofs(mesh, dofs_, part_, size), dofs_);
+    validate(options_.distributed_solver);
+    dist_ = std::make_unique<DistributedMesh>(distribute_mesh(MPI_COMM_WORLD, mesh));
+    const LocalMesh& local = dist_->local;
+    constrained = to_local_nodes(local, constrained);
+    for (auto& bc : dirichlet_) bc.nodes = to_local_nodes(local, bc.nodes);
+    rules.stiffness = restrict_to_elements(local, rules.stiffness);
+    rules.mass = restrict_to_elements(local, rules.mass);
+    if (external.size() > 0) {
+      Eigen::VectorXd mine(3 * local.mesh.num_nodes());
+      for (int i = 0; i < local.mesh.num_nodes(); ++i) mine.segment<3>(3 * i) = external.segment<3>(3 * local.global_node[i]);
+      external = std::move(mine);
+    }
+  }
+  const Mesh& m = this->mesh();
+  dofs_ = DofMap(m.num_nodes(), constrained);
+  assembler_ = std::make_unique<Assembler>(m, dofs_, options_.quadrature_degree);
+  assembler_->set_element_rules(rules);
+  if (dist_) {
+    rows_ = std::make_unique<DistributedDofs>(distribute_dofs(*dist_, dofs_));
+    solver_ = make_distributed_solver(*rows_, options_.distributed_solver, m, dofs_);
   } else {
-    assembler_->set_element_rules(options_.element_rules);
     solver_ = make_linear_solver(options_.linear_solver);
   }
   solver_->set_discretization(
-      {&mesh_, &dofs_, options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr});
-  const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * mesh.order + 2;
-  f_ext_ = body_force ? assembler_->body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * mesh.num_nodes());
-  if (options_.distributed) sum_over_ranks(f_ext_, MPI_COMM_WORLD);
-  if (options_.external_load.size() > 0) {
-    if (options_.external_load.size() != f_ext_.size() || !options_.external_load.allFinite())
-      throw std::invalid_argument(fmt::format("static problem: external_load needs {} finite entries (got {})",
-                                              f_ext_.size(), options_.external_load.size()));
-    f_ext_ += options_.external_load;
-  }
-  u_dirichlet_ = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
+      {&m, &dofs_, options_.preconditioner_blocks && !dist_ ? &*options_.preconditioner_blocks : nullptr});
+  const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * m.order + 2;
+  f_ext_ = body_force ? assembler_->body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * m.num_nodes());
+  if (dist_) dist_->nodes.sum(f_ext_);  // each rank integrated its own elements
+  if (external.size() > 0) f_ext_ += external;
+  u_dirichlet_ = Eigen::VectorXd::Zero(3 * m.num_nodes());
   for (const auto& bc : dirichlet_)
     if (bc.displacement)
-      for (int n : bc.nodes) u_dirichlet_.segment<3>(3 * n) = bc.displacement(mesh.nodes.col(n));
-  u_full_ = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
-  x_ = Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), 3 * mesh.num_nodes());
+      for (int n : bc.nodes) u_dirichlet_.segment<3>(3 * n) = bc.displacement(m.nodes.col(n));
+  u_full_ = Eigen::VectorXd::Zero(3 * m.num_nodes());
+  x_ = Eigen::Map<const Eigen::VectorXd>(m.nodes.data(), 3 * m.num_nodes());
   assembly_seconds_ = 0.0;
   setup_seconds_hint_ = seconds_since(t0);
+}
+
+double StaticElasticity::external_work() const {
+  // Consistent vectors: owned nodes only, summed over ranks (each DOF once).
+  return dist_ ? dist_->nodes.dot(f_ext_, u_full_) : f_ext_.dot(u_full_);
 }
 
 void StaticElasticity::set_state(const Eigen::VectorXd& u_free) {
   for (int d : dofs_.constrained_dofs()) u_full_[d] = load_ * u_dirichlet_[d];
   const auto& free = dofs_.free_dofs();
   for (int i = 0; i < dofs_.num_free(); ++i) u_full_[free[i]] = u_free[i];
-  x_ = Eigen::Map<const Eigen::VectorXd>(mesh_.nodes.data(), 3 * mesh_.num_nodes()) + u_full_;
+  const Mesh& m = mesh();
+  x_ = Eigen::Map<const Eigen::VectorXd>(m.nodes.data(), 3 * m.num_nodes()) + u_full_;
 }
 
 double StaticElasticity::energy(const Eigen::VectorXd& u) {
   set_state(u);
   const auto t0 = Clock::now();
   double e = assembler_->energy(material_, x_);
-  if (options_.distributed) e = sum_over_ranks(e, MPI_COMM_WORLD);  // each rank integrated its own elements
+  if (dist_) e = dist_->sum(e);  // each rank integrated its own elements
   assembly_seconds_ += seconds_since(t0);
-  return e - load_ * f_ext_.dot(u_full_);
+  return e - load_ * external_work();
 }
 
 double StaticElasticity::gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) {
@@ -105,23 +126,23 @@ double StaticElasticity::gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) 
     assembly_seconds_ += seconds_since(t0);
     return std::numeric_limits<double>::infinity();
   }
-  if (options_.distributed) {
-    e = sum_over_ranks(e, MPI_COMM_WORLD);
-    sum_over_ranks(g_full_, MPI_COMM_WORLD);
+  if (dist_) {
+    e = dist_->sum(e);
+    dist_->nodes.sum(g_full_);  // partial nodal forces -> full, on owners and ghosts alike
   }
   assembly_seconds_ += seconds_since(t0);
   g = dofs_.restrict(g_full_ - load_ * f_ext_);
-  return e - load_ * f_ext_.dot(u_full_);
+  return e - load_ * external_work();
 }
 
 void StaticElasticity::hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K, bool project) {
   set_state(u);
   const auto t0 = Clock::now();
-  // Distributed: this rank's share of K; forces summed.
+  // Distributed: this rank's share of K (its elements, over its piece); forces completed.
   on_all_ranks_or_throw<MaterialDomainError>(options_.distributed, MPI_COMM_WORLD,
                                              "static problem: an element left the material's domain on some rank",
                                              [&] { assembler_->hessian(material_, x_, g_full_, K, project); });
-  if (options_.distributed) sum_over_ranks(g_full_, MPI_COMM_WORLD);
+  if (dist_) dist_->nodes.sum(g_full_);
   assembly_seconds_ += seconds_since(t0);
   g = dofs_.restrict(g_full_ - load_ * f_ext_);
 }
@@ -132,7 +153,7 @@ double StaticElasticity::force_scale(const Eigen::VectorXd& g0) const {
   // increment, measured by the predictor), and the first residual. Relative to
   // this, ||g|| <= rtol * scale does not depend on units or mesh size; a problem
   // loaded only through its boundary (zero body force) still has a scale.
-  const double s = std::max({load_ * dofs_.restrict(f_ext_).norm(), step_force_, g0.norm()});
+  const double s = std::max({load_ * norm(dofs_.restrict(f_ext_)), step_force_, norm(g0)});
   return s > 0.0 ? s : 1.0;
 }
 
@@ -150,7 +171,7 @@ Eigen::VectorXd StaticElasticity::predict(const Eigen::VectorXd& u, double from,
   load_ = from + eps;
   if (!std::isfinite(gradient(u, g1))) return u;
   const Eigen::VectorXd dg = (g1 - g0) / eps * (to - from);
-  step_force_ = dg.norm();
+  step_force_ = norm(dg);
   try {
     solver_->solve(-dg, du);
   } catch (const std::runtime_error&) {  // an iterative solver that did not converge: no prediction

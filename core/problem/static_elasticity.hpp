@@ -5,9 +5,11 @@
 // damped Newton of solver/newton.hpp. On failure the load (body force and
 // prescribed displacement together) is applied in smaller steps.
 #include "assembly/assembler.hpp"
+#include "assembly/distributed_dofs.hpp"
 #include "assembly/dof_map.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
+#include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/newton.hpp"
 
@@ -43,12 +45,16 @@ struct StaticOptions {
   /// tractions integrated by the caller); empty = none.
   Eigen::VectorXd external_load;
   /// Distributed over the ranks of MPI_COMM_WORLD (issue 7): the elements are
-  /// partitioned (recursive coordinate bisection), each rank assembles its own,
-  /// energies and forces are summed over the ranks, and every linear solve runs
-  /// on hypre (PCG + BoomerAMG on the distributed IJ matrix; `linear_solver` is
-  /// then not used). With one rank (no mpirun) it is the same code path. Every
-  /// rank must construct and solve the problem (collective calls).
+  /// partitioned (recursive coordinate bisection) and each rank keeps only its
+  /// piece of the mesh (its elements, their owned and ghost nodes): DOF map,
+  /// pattern, element data and vectors are the piece's. Energies are summed over
+  /// the ranks, forces completed by the node halo, and every linear solve runs
+  /// on hypre (`distributed_solver` on the distributed IJ matrix; `linear_solver`
+  /// is then not used). With one rank (no mpirun) it is the same code path. Every
+  /// rank must construct and solve the problem (collective calls); Dirichlet node
+  /// sets, element rules and external_load are given on the global mesh.
   bool distributed = false;
+  DistributedSolverOptions distributed_solver;
   int max_load_halvings = 6;   ///< a failed load step is halved at most this many times in a row
   /// Tangent predictor at each load step: u += -K^-1 (dg/dload) dload, with K at
   /// the last converged state. Without it the prescribed boundary displacement
@@ -79,8 +85,15 @@ class StaticElasticity final : public NonlinearProblem {
 
   StaticReport solve();
 
-  /// Displacement of every node, 3 * num_nodes (valid after solve()).
+  /// Displacement of every node of mesh(), 3 per node (valid after solve()).
   const Eigen::VectorXd& displacement() const { return u_full_; }
+  /// The mesh the problem lives on: the given one, or (distributed) this rank's piece.
+  const Mesh& mesh() const { return dist_ ? dist_->mesh() : mesh_; }
+  /// Distributed runs: the piece, its halo and the global numbering; else null.
+  const DistributedMesh* distributed_mesh() const { return dist_.get(); }
+  const DistributedDofs* distributed_dofs() const { return rows_.get(); }
+  /// Free DOFs over all ranks.
+  long long global_free_dofs() const { return rows_ ? rows_->global_rows : dofs_.num_free(); }
   const Assembler& assembler() const { return *assembler_; }
   const DofMap& dofs() const { return dofs_; }
 
@@ -90,12 +103,18 @@ class StaticElasticity final : public NonlinearProblem {
   double gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) override;
   void hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K, bool project) override;
   double force_scale(const Eigen::VectorXd& g0) const override;
+  double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const override {
+    return rows_ ? rows_->free.dot(a, b) : a.dot(b);
+  }
 
  private:
   void set_state(const Eigen::VectorXd& u_free);  // fills x_ and u_full_
+  double external_work() const;                   // f_ext . u over the whole body
   /// The tangent predictor from load `from` to `to` at state u (converged at `from`).
   Eigen::VectorXd predict(const Eigen::VectorXd& u, double from, double to);
-  const Mesh& mesh_;
+  const Mesh& mesh_;  ///< the given (global) mesh
+  std::unique_ptr<DistributedMesh> dist_;  ///< distributed: this rank's piece (mesh() is its mesh)
+  std::unique_ptr<DistributedDofs> rows_;  ///< distributed: global rows of the piece's free DOFs
   const Material& material_;
   std::vector<DirichletCondition> dirichlet_;
   StaticOptions options_;
@@ -110,7 +129,6 @@ class StaticElasticity final : public NonlinearProblem {
   double assembly_seconds_ = 0.0;
   double setup_seconds_hint_ = 0.0;
   int predictor_iterations_ = 0;
-  std::vector<int> part_;  ///< distributed: the part (rank) of every element
 };
 
 }  // namespace hofem

@@ -114,11 +114,10 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   }
   const bool writer = rank == 0;  // distributed: one rank writes
-  // Per-element values of a distributed run live on the rank of their element: summed, each is whole.
-  auto whole = [&](Eigen::VectorXd v) {
-    if (options.distributed) sum_over_ranks(v, MPI_COMM_WORLD);
-    return v;
-  };
+  // A distributed run's fields live on the ranks' pieces of the mesh: gathered
+  // to the writer in global order (one VTU per frame, one stats file).
+  auto nodal = [](const DistributedMesh* d, const Eigen::VectorXd& v) { return d ? d->gather_nodal(v) : v; };
+  auto elemental = [](const DistributedMesh* d, const Eigen::VectorXd& v) { return d ? d->gather_elemental(v) : v; };
   std::error_code ec;
   std::filesystem::create_directories(out_dir, ec);
   if (ec) throw SceneError(fmt::format("{}: cannot create the output directory '{}': {}", s.file, out_dir, ec.message()));
@@ -169,10 +168,13 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     const StaticReport r = problem.solve();
     result.ok = r.converged;
     result.message = r.message;
-    const Eigen::VectorXd u = problem.displacement();
-    const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), u.size()) + u;
-    const Eigen::VectorXd density = energy_density(whole(problem.assembler().element_energies(*material, x)),
-                                                   whole(problem.assembler().element_volumes()));
+    const DistributedMesh* piece = problem.distributed_mesh();
+    const Eigen::VectorXd& u_mine = problem.displacement();
+    const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(problem.mesh().nodes.data(), u_mine.size()) + u_mine;
+    const Eigen::VectorXd u = nodal(piece, u_mine);
+    const Eigen::VectorXd energies = elemental(piece, problem.assembler().element_energies(*material, x));
+    const Eigen::VectorXd volumes = elemental(piece, problem.assembler().element_volumes());
+    const Eigen::VectorXd density = writer ? energy_density(energies, volumes) : Eigen::VectorXd();
     if (options.write_frames && writer) write_frame(out_dir, 0, mesh, u, Eigen::VectorXd(), density, emb, frames, 0.0);
     st["built"] = {{"mass", "none (static)"},
                    {"mass_matrices_built", 0},
@@ -198,12 +200,14 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     DynamicElasticity sim(mesh, *material, std::move(motions), std::move(dynamics));
     const Eigen::Vector3d v0 = s.initial_velocity;
     if (v0.squaredNorm() > 0.0) sim.set_velocity([v0](const Eigen::Vector3d&) { return v0; });
-    const Eigen::VectorXd volumes = whole(sim.assembler().element_volumes());
+    const DistributedMesh* piece = sim.distributed_mesh();
+    const Eigen::VectorXd volumes = elemental(piece, sim.assembler().element_volumes());
     auto frame = [&](int k) {
       if (!options.write_frames) return;
-      const Eigen::VectorXd density = energy_density(whole(sim.assembler().element_energies(*material, sim.positions())), volumes);
+      const Eigen::VectorXd energies = elemental(piece, sim.assembler().element_energies(*material, sim.positions()));
+      const Eigen::VectorXd u = nodal(piece, sim.displacement()), v = nodal(piece, sim.velocities());
       if (!writer) return;
-      write_frame(out_dir, k, mesh, sim.displacement(), sim.velocities(), density, emb, frames, sim.time());
+      write_frame(out_dir, k, mesh, u, v, energy_density(energies, volumes), emb, frames, sim.time());
     };
     if (is_explicit(s.dynamics.integrator)) st["stable_dt_estimate"] = sim.estimate_stable_dt();
     const int steps = static_cast<int>(std::ceil(s.duration / s.dynamics.dt - 1e-9));
@@ -228,7 +232,8 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
       const Energies e = sim.energies();
       row["energy"] = {{"kinetic", e.kinetic}, {"elastic", e.elastic}, {"gravity", e.gravity}, {"floor", e.floor},
                        {"total", e.total()}};
-      add_displacement_curve(mesh, sim.displacement(), emb, row);
+      const Eigen::VectorXd u = nodal(piece, sim.displacement());  // gathered: the writer's curve
+      if (writer) add_displacement_curve(mesh, u, emb, row);
       per_step.push_back(row);
       done = k;
       if (k % s.output_every == 0 || k == steps) frame(k);

@@ -4,10 +4,12 @@
 #include "solver/boomeramg.hpp"
 #include "solver/hypre_matrix.hpp"
 
+#include <Eigen/Geometry>
 #include <HYPRE_krylov.h>
 #include <HYPRE_parcsr_ls.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -18,21 +20,30 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// BoomerAMG is set up before PCG's set-up, which then calls this in its place.
+// BoomerAMG is set up before the Krylov solver's set-up, which then calls this in its place.
 HYPRE_Int already_set_up(HYPRE_Solver, HYPRE_ParCSRMatrix, HYPRE_ParVector, HYPRE_ParVector) { return 0; }
 
 }  // namespace
+
+void validate(const DistributedSolverOptions& o) {
+  if (o.krylov != "pcg" && o.krylov != "gmres")
+    throw std::invalid_argument(fmt::format("distributed solver: unknown Krylov method '{}' (pcg, gmres)", o.krylov));
+  boomeramg_options(o.amg);  // throws for an unknown variant, naming it
+  if (o.gmres_restart < 1)
+    throw std::invalid_argument(fmt::format("distributed solver: GMRES restart must be >= 1 (got {})", o.gmres_restart));
+}
 
 struct DistributedLinearSystem::Hypre {
   HYPRE_IJMatrix ij = nullptr;
   HYPRE_ParCSRMatrix parcsr = nullptr;
   HypreVector b, x;
   std::unique_ptr<BoomerAmg> amg;
-  HYPRE_Solver pcg = nullptr;
+  HYPRE_Solver krylov = nullptr;
+  bool gmres = false;
   ~Hypre() { destroy(); }
   void destroy() {
-    if (pcg) HYPRE_ParCSRPCGDestroy(pcg);
-    pcg = nullptr;
+    if (krylov) gmres ? HYPRE_ParCSRGMRESDestroy(krylov) : HYPRE_ParCSRPCGDestroy(krylov);
+    krylov = nullptr;
     amg.reset();
     if (ij) HYPRE_IJMatrixDestroy(ij);
     ij = nullptr;
@@ -40,33 +51,48 @@ struct DistributedLinearSystem::Hypre {
   }
 };
 
-DistributedLinearSystem::DistributedLinearSystem(MPI_Comm comm, DistributedDofs rows, const DofMap& dofs)
-    : comm_(comm), rows_(std::move(rows)), hypre_(std::make_unique<Hypre>()) {
+DistributedLinearSystem::DistributedLinearSystem(const DistributedDofs& rows, DistributedSolverOptions options)
+    : rows_(rows), options_(std::move(options)), hypre_(std::make_unique<Hypre>()) {
   ensure_hypre();
-  MPI_Comm_rank(comm_, &rank_);
-  MPI_Comm_size(comm_, &size_);
-  if (rows_.parts != size_)
-    throw std::invalid_argument(
-        fmt::format("DistributedLinearSystem: the numbering has {} parts for {} ranks", rows_.parts, size_));
-  if (rows_.first_row.back() != dofs.num_free())
-    throw std::invalid_argument(fmt::format("DistributedLinearSystem: the numbering has {} rows for {} free DOFs",
-                                            rows_.first_row.back(), dofs.num_free()));
-  row_of_free_.resize(dofs.num_free());
-  for (int i = 0; i < dofs.num_free(); ++i) row_of_free_[i] = rows_.global_row[dofs.free_dofs()[i]];
+  validate(options_);
+  MPI_Comm_rank(rows_.free.comm(), &rank_);
 }
 
 DistributedLinearSystem::~DistributedLinearSystem() = default;
 
+void DistributedLinearSystem::set_coordinates(const Mesh& mesh, const DofMap& dofs) {
+  if (!options_.rigid_body_modes) return;
+  const auto n = static_cast<Eigen::Index>(rows_.row.size());
+  if (dofs.num_free() != n || dofs.num_dofs() != 3 * mesh.num_nodes())
+    throw std::invalid_argument(fmt::format("DistributedLinearSystem: a DOF map of {} free DOFs for {} rows",
+                                            dofs.num_free(), n));
+  // Centred at the owned DOFs' global centroid (any centre spans the same space
+  // together with the translations; centring keeps the vectors well scaled).
+  Eigen::Vector4d sums = Eigen::Vector4d::Zero();
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (rows_.free.owned(static_cast<int>(i))) sums += mesh.nodes.col(dofs.free_dofs()[i] / 3).homogeneous();
+  MPI_Allreduce(MPI_IN_PLACE, sums.data(), 4, MPI_DOUBLE, MPI_SUM, rows_.free.comm());
+  const Eigen::Vector3d centre = sums.head<3>() / std::max(sums[3], 1.0);
+  modes_.resize(rows_.owned_rows, 3);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!rows_.free.owned(static_cast<int>(i))) continue;
+    const int dof = dofs.free_dofs()[i];
+    const Eigen::Vector3d X = mesh.nodes.col(dof / 3) - centre;
+    for (int k = 0; k < 3; ++k) modes_(rows_.row[i] - rows_.first_row, k) = Eigen::Vector3d::Unit(k).cross(X)[dof % 3];
+  }
+}
+
 double DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
   const auto t0 = Clock::now();
-  const auto n = static_cast<Eigen::Index>(row_of_free_.size());
+  const auto n = static_cast<Eigen::Index>(rows_.row.size());
   if (K_local.rows() != n || K_local.cols() != n)
-    throw std::invalid_argument(fmt::format("DistributedLinearSystem: a {}x{} matrix for {} free DOFs", K_local.rows(),
-                                            K_local.cols(), n));
+    throw std::invalid_argument(fmt::format("DistributedLinearSystem: a {}x{} matrix for {} local free DOFs",
+                                            K_local.rows(), K_local.cols(), n));
   Hypre& h = *hypre_;
   h.destroy();  // a new matrix each time: see HypreMatrix::assign for why that is cheaper than re-opening
-  const HYPRE_BigInt lo = rows_.first_row[rank_], hi = rows_.first_row[rank_ + 1] - 1;
-  hypre_check(HYPRE_IJMatrixCreate(comm_, lo, hi, lo, hi, &h.ij), "HYPRE_IJMatrixCreate");
+  const MPI_Comm comm = rows_.free.comm();
+  const HYPRE_BigInt lo = rows_.first_row, hi = rows_.first_row + rows_.owned_rows - 1;
+  hypre_check(HYPRE_IJMatrixCreate(comm, lo, hi, lo, hi, &h.ij), "HYPRE_IJMatrixCreate");
   hypre_check(HYPRE_IJMatrixSetObjectType(h.ij, HYPRE_PARCSR), "HYPRE_IJMatrixSetObjectType");
   hypre_check(HYPRE_IJMatrixInitialize(h.ij), "HYPRE_IJMatrixInitialize");
   // The matrix is symmetric and stored in full, so column j is row j. Only the
@@ -79,12 +105,12 @@ double DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
     values.clear();
     for (SparseMatrix::InnerIterator it(K_local, j); it; ++it)
       if (it.value() != 0.0) {
-        cols.push_back(row_of_free_[it.row()]);
+        cols.push_back(rows_.row[it.row()]);
         values.push_back(it.value());
       }
     if (cols.empty()) continue;
     HYPRE_Int count = static_cast<HYPRE_Int>(cols.size());
-    HYPRE_BigInt row = row_of_free_[j];
+    HYPRE_BigInt row = rows_.row[j];
     hypre_check(HYPRE_IJMatrixAddToValues(h.ij, 1, &count, &row, cols.data(), values.data()),
                 "HYPRE_IJMatrixAddToValues");
   }
@@ -94,17 +120,34 @@ double DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
   h.parcsr = static_cast<HYPRE_ParCSRMatrix>(object);
   h.b.conform(h.parcsr);
   h.x.conform(h.parcsr);
-  BoomerAmgOptions options;  // 3 functions per node, HMIS + extended+i (boomeramg.hpp)
-  h.amg = std::make_unique<BoomerAmg>(options);
+  BoomerAmgOptions amg = boomeramg_options(options_.amg);  // 3 functions per node (boomeramg.hpp)
+  if (options_.rigid_body_modes) {
+    if (modes_.rows() != rows_.owned_rows)
+      throw std::logic_error("DistributedLinearSystem: rigid-body modes need set_coordinates() first");
+    amg.interp_vec_variant = 2;  // GM-2, with nodal coarsening (row-sum block norm): boomeramg.cpp
+    amg.nodal = 4;
+  }
+  h.amg = std::make_unique<BoomerAmg>(amg);
   h.x.set_zero();
-  h.amg->setup(h.parcsr, h.b.par(), h.x.par());
-  hypre_check(HYPRE_ParCSRPCGCreate(comm_, &h.pcg), "HYPRE_ParCSRPCGCreate");
-  hypre_check(HYPRE_ParCSRPCGSetTwoNorm(h.pcg, 1), "HYPRE_ParCSRPCGSetTwoNorm");  // ||r||_2 <= rtol ||b||_2
-  hypre_check(HYPRE_ParCSRPCGSetAbsoluteTol(h.pcg, 0.0), "HYPRE_ParCSRPCGSetAbsoluteTol");
-  hypre_check(HYPRE_ParCSRPCGSetPrintLevel(h.pcg, 0), "HYPRE_ParCSRPCGSetPrintLevel");
-  hypre_check(HYPRE_ParCSRPCGSetPrecond(h.pcg, HYPRE_BoomerAMGSolve, already_set_up, h.amg->handle()),
-              "HYPRE_ParCSRPCGSetPrecond");
-  hypre_check(HYPRE_ParCSRPCGSetup(h.pcg, h.parcsr, h.b.par(), h.x.par()), "HYPRE_ParCSRPCGSetup");
+  h.amg->setup(h.parcsr, h.b.par(), h.x.par(), options_.rigid_body_modes ? &modes_ : nullptr);
+  h.gmres = options_.krylov == "gmres";
+  if (h.gmres) {
+    hypre_check(HYPRE_ParCSRGMRESCreate(comm, &h.krylov), "HYPRE_ParCSRGMRESCreate");
+    hypre_check(HYPRE_ParCSRGMRESSetKDim(h.krylov, options_.gmres_restart), "HYPRE_ParCSRGMRESSetKDim");
+    hypre_check(HYPRE_ParCSRGMRESSetAbsoluteTol(h.krylov, 0.0), "HYPRE_ParCSRGMRESSetAbsoluteTol");
+    hypre_check(HYPRE_ParCSRGMRESSetPrintLevel(h.krylov, 0), "HYPRE_ParCSRGMRESSetPrintLevel");
+    hypre_check(HYPRE_ParCSRGMRESSetPrecond(h.krylov, HYPRE_BoomerAMGSolve, already_set_up, h.amg->handle()),
+                "HYPRE_ParCSRGMRESSetPrecond");
+    hypre_check(HYPRE_ParCSRGMRESSetup(h.krylov, h.parcsr, h.b.par(), h.x.par()), "HYPRE_ParCSRGMRESSetup");
+  } else {
+    hypre_check(HYPRE_ParCSRPCGCreate(comm, &h.krylov), "HYPRE_ParCSRPCGCreate");
+    hypre_check(HYPRE_ParCSRPCGSetTwoNorm(h.krylov, 1), "HYPRE_ParCSRPCGSetTwoNorm");  // ||r||_2 <= rtol ||b||_2
+    hypre_check(HYPRE_ParCSRPCGSetAbsoluteTol(h.krylov, 0.0), "HYPRE_ParCSRPCGSetAbsoluteTol");
+    hypre_check(HYPRE_ParCSRPCGSetPrintLevel(h.krylov, 0), "HYPRE_ParCSRPCGSetPrintLevel");
+    hypre_check(HYPRE_ParCSRPCGSetPrecond(h.krylov, HYPRE_BoomerAMGSolve, already_set_up, h.amg->handle()),
+                "HYPRE_ParCSRPCGSetPrecond");
+    hypre_check(HYPRE_ParCSRPCGSetup(h.krylov, h.parcsr, h.b.par(), h.x.par()), "HYPRE_ParCSRPCGSetup");
+  }
   return since(t0);
 }
 
@@ -112,7 +155,7 @@ long long DistributedLinearSystem::local_nonzeros() const {
   // Counted on demand (a statistic, not worth a pass over the rows per assembly).
   if (!hypre_->parcsr) return 0;
   long long count = 0;
-  for (HYPRE_BigInt r = rows_.first_row[rank_]; r < rows_.first_row[rank_ + 1]; ++r) {
+  for (HYPRE_BigInt r = rows_.first_row; r < rows_.first_row + rows_.owned_rows; ++r) {
     HYPRE_Int size = 0;
     HYPRE_BigInt* c = nullptr;
     double* v = nullptr;
@@ -123,69 +166,62 @@ long long DistributedLinearSystem::local_nonzeros() const {
   return count;
 }
 
-DistributedSolveResult DistributedLinearSystem::assemble_and_solve(const SparseMatrix& K_local,
-                                                                   const Eigen::VectorXd& b_local, Eigen::VectorXd& x,
-                                                                   double rtol) {
-  const auto n = static_cast<Eigen::Index>(row_of_free_.size());
-  if (b_local.size() != n)
-    throw std::invalid_argument(fmt::format("DistributedLinearSystem: {} values for {} free DOFs", b_local.size(), n));
-  const double setup = assemble_matrix(K_local);
-  Eigen::VectorXd b(n);
-  MPI_Allreduce(b_local.data(), b.data(), static_cast<int>(n), MPI_DOUBLE, MPI_SUM, comm_);
-  DistributedSolveResult r = solve(b, x, rtol);
-  r.setup_seconds += setup;
-  return r;
-}
-
 DistributedSolveResult DistributedLinearSystem::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol,
                                                       int max_iterations) {
   Hypre& h = *hypre_;
-  if (!h.pcg) throw std::logic_error("DistributedLinearSystem: solve before assemble_matrix");
-  const auto n = static_cast<Eigen::Index>(row_of_free_.size());
+  if (!h.krylov) throw std::logic_error("DistributedLinearSystem: solve before assemble_matrix");
+  const auto n = static_cast<Eigen::Index>(rows_.row.size());
   if (b.size() != n)
-    throw std::invalid_argument(fmt::format("DistributedLinearSystem: right-hand side of {} for {} free DOFs", b.size(), n));
+    throw std::invalid_argument(fmt::format("DistributedLinearSystem: right-hand side of {} for {} local free DOFs",
+                                            b.size(), n));
   DistributedSolveResult r;
   const auto t1 = Clock::now();
-  Eigen::VectorXd mine(rows_.owned_rows(rank_));
+  Eigen::VectorXd mine(rows_.owned_rows);
   for (Eigen::Index i = 0; i < n; ++i)
-    if (const int row = row_of_free_[i] - rows_.first_row[rank_]; row >= 0 && row < mine.size()) mine[row] = b[i];
+    if (rows_.free.owned(static_cast<int>(i))) mine[rows_.row[i] - rows_.first_row] = b[i];
   h.b.set(mine);
   h.x.set_zero();
-  hypre_check(HYPRE_ParCSRPCGSetTol(h.pcg, rtol), "HYPRE_ParCSRPCGSetTol");
-  hypre_check(HYPRE_ParCSRPCGSetMaxIter(h.pcg, max_iterations), "HYPRE_ParCSRPCGSetMaxIter");
-  const HYPRE_Int code = HYPRE_ParCSRPCGSolve(h.pcg, h.parcsr, h.b.par(), h.x.par());
-  HYPRE_Int its = 0;
-  HYPRE_ParCSRPCGGetNumIterations(h.pcg, &its);
-  HYPRE_ParCSRPCGGetFinalRelativeResidualNorm(h.pcg, &r.relative_residual);
+  HYPRE_Int code = 0, its = 0;
+  if (h.gmres) {
+    hypre_check(HYPRE_ParCSRGMRESSetTol(h.krylov, rtol), "HYPRE_ParCSRGMRESSetTol");
+    hypre_check(HYPRE_ParCSRGMRESSetMaxIter(h.krylov, max_iterations), "HYPRE_ParCSRGMRESSetMaxIter");
+    code = HYPRE_ParCSRGMRESSolve(h.krylov, h.parcsr, h.b.par(), h.x.par());
+    HYPRE_ParCSRGMRESGetNumIterations(h.krylov, &its);
+    HYPRE_ParCSRGMRESGetFinalRelativeResidualNorm(h.krylov, &r.relative_residual);
+  } else {
+    hypre_check(HYPRE_ParCSRPCGSetTol(h.krylov, rtol), "HYPRE_ParCSRPCGSetTol");
+    hypre_check(HYPRE_ParCSRPCGSetMaxIter(h.krylov, max_iterations), "HYPRE_ParCSRPCGSetMaxIter");
+    code = HYPRE_ParCSRPCGSolve(h.krylov, h.parcsr, h.b.par(), h.x.par());
+    HYPRE_ParCSRPCGGetNumIterations(h.krylov, &its);
+    HYPRE_ParCSRPCGGetFinalRelativeResidualNorm(h.krylov, &r.relative_residual);
+  }
   if (code != 0) HYPRE_ClearAllErrors();  // non-convergence is reported below, not thrown
   r.iterations = its;
   r.converged = r.relative_residual <= rtol;
   if (!r.converged)
-    r.message = fmt::format("hypre PCG + BoomerAMG: relative residual {:.3g} after {} iterations (target {:.3g})",
-                            r.relative_residual, its, rtol);
-  // Every rank gets the whole solution, in the serial free numbering.
+    r.message = fmt::format("hypre {} + BoomerAMG: relative residual {:.3g} after {} iterations (target {:.3g})",
+                            options_.krylov, r.relative_residual, its, rtol);
   h.x.get(mine);
-  std::vector<int> counts(size_), displs(size_);
-  for (int p = 0; p < size_; ++p) {
-    counts[p] = rows_.owned_rows(p);
-    displs[p] = rows_.first_row[p];
-  }
-  Eigen::VectorXd global(n);
-  MPI_Allgatherv(mine.data(), counts[rank_], MPI_DOUBLE, global.data(), counts.data(), displs.data(), MPI_DOUBLE,
-                 comm_);
-  x.resize(n);
-  for (Eigen::Index i = 0; i < n; ++i) x[i] = global[row_of_free_[i]];
+  x.setZero(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (rows_.free.owned(static_cast<int>(i))) x[i] = mine[rows_.row[i] - rows_.first_row];
+  rows_.free.update_ghosts(x);
   r.solve_seconds = since(t1);
   return r;
 }
 
-DistributedHypreSolver::DistributedHypreSolver(MPI_Comm comm, DistributedDofs rows, const DofMap& dofs)
-    : system_(comm, std::move(rows), dofs) {}
+DistributedHypreSolver::DistributedHypreSolver(const DistributedDofs& rows, DistributedSolverOptions options)
+    : system_(rows, std::move(options)),
+      name_(fmt::format("distributed hypre-{}+{}{}", system_.options().krylov, system_.options().amg,
+                        system_.options().rigid_body_modes ? "+rigid" : "")) {}
 
 bool DistributedHypreSolver::factorize(const SparseMatrix& A) {
   error_.clear();
-  if (!A.coeffs().allFinite()) {
-    error_ = "distributed hypre-pcg+amg: the matrix has non-finite entries";
+  // Every rank must agree (the set-up is collective): a non-finite entry anywhere stops all.
+  int bad = A.coeffs().allFinite() ? 0 : 1, any = 0;
+  MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_LOR, system_.rows().free.comm());
+  if (any) {
+    error_ = fmt::format("{}: the matrix has non-finite entries", name_);
     return false;
   }
   system_.assemble_matrix(A);
@@ -196,6 +232,13 @@ bool DistributedHypreSolver::factorize(const SparseMatrix& A) {
 void DistributedHypreSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   last_ = system_.solve(b, x, rtol_);
   if (!last_.converged) throw std::runtime_error(last_.message);
+}
+
+std::unique_ptr<LinearSolver> make_distributed_solver(const DistributedDofs& rows, const DistributedSolverOptions& options,
+                                                      const Mesh& mesh, const DofMap& dofs) {
+  auto solver = std::make_unique<DistributedHypreSolver>(rows, options);
+  solver->system().set_coordinates(mesh, dofs);
+  return solver;
 }
 
 }  // namespace hofem

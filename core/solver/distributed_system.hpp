@@ -1,23 +1,20 @@
 #pragma once
 // A linear system assembled by several MPI ranks straight into hypre's IJ /
-// ParCSR objects (issue 7), solved by hypre's PCG with BoomerAMG.
+// ParCSR objects (issue 7), solved by hypre's PCG or GMRES with BoomerAMG.
 //
-// The boundary with assembly stays the serial one: each rank assembles its own
-// elements with the ordinary Assembler into a SparseMatrix over the serial free
-// numbering (the elements of other parts contribute nothing: ElementRules with
-// empty rules, see assembly/element_rules), and this class adds those values
-// into the IJ matrix under the distributed row numbering (DistributedDofs).
-// Contributions to rows another rank owns (the ghost rows) travel in
-// HYPRE_IJMatrixAssemble. The solution comes back on every rank in the serial
-// free numbering, so Newton, load stepping and time stepping run unchanged.
-//
-// What is still serial (and what a larger run would change first): every rank
-// holds the whole mesh, the full sparsity pattern and full-length vectors; the
-// solution is all-gathered after each solve. The IJ matrix, BoomerAMG's
-// hierarchy and the Krylov iterations are distributed.
+// The boundary with assembly is the serial one, on each rank's piece of the
+// mesh: the rank assembles its own elements with the ordinary Assembler into a
+// SparseMatrix over its local free DOFs (owned and ghost), and this class adds
+// those values into the IJ matrix under the global row numbering
+// (DistributedDofs). Contributions to rows another rank owns travel in
+// HYPRE_IJMatrixAssemble. Right-hand sides and solutions are consistent local
+// vectors (every ghost equal to its owner's value): the owned rows go into
+// hypre's ParVector, and the solution's ghosts are filled from their owners.
+// Newton, load stepping and time stepping thus run unchanged on local vectors.
 #include "assembly/distributed_dofs.hpp"
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_matrix.hpp"
+#include "mesh/mesh.hpp"
 #include "solver/linear_solver.hpp"
 
 #include <Eigen/Core>
@@ -28,59 +25,71 @@
 
 namespace hofem {
 
+struct DistributedSolverOptions {
+  std::string krylov = "pcg";  ///< "pcg" (symmetric positive definite systems) or "gmres"
+  std::string amg = "amg";     ///< a boomeramg_variant_names() entry
+  /// Rigid rotations as BoomerAMG interpolation vectors (GM-2 with nodal
+  /// coarsening, boomeramg.cpp measured its trade-off: fewer iterations, dearer
+  /// set-up and cycles). Needs the node coordinates (set_coordinates).
+  bool rigid_body_modes = false;
+  int gmres_restart = 50;
+};
+
+/// Throws std::invalid_argument naming the bad option.
+void validate(const DistributedSolverOptions& options);
+
 struct DistributedSolveResult {
   bool converged = false;
   int iterations = 0;
   double relative_residual = 0.0;  ///< hypre's final ||r|| / ||b||
   double setup_seconds = 0.0;      ///< IJ assembly (with its communication) and BoomerAMG set-up
-  double solve_seconds = 0.0;      ///< PCG iterations and the all-gather
+  double solve_seconds = 0.0;      ///< Krylov iterations and the ghost update
   std::string message;
 };
 
 class DistributedLinearSystem {
  public:
-  /// rows: the numbering of `dofs`' free DOFs over the ranks of comm (parts = comm size).
-  DistributedLinearSystem(MPI_Comm comm, DistributedDofs rows, const DofMap& dofs);
+  /// rows: the global numbering of this rank's local free DOFs (collective
+  /// construction by distribute_dofs); kept by reference: it must outlive this.
+  explicit DistributedLinearSystem(const DistributedDofs& rows, DistributedSolverOptions options = {});
   ~DistributedLinearSystem();
   DistributedLinearSystem(const DistributedLinearSystem&) = delete;
   DistributedLinearSystem& operator=(const DistributedLinearSystem&) = delete;
 
-  /// Collective. Sums every rank's K_local (num_free x num_free, serial free
-  /// numbering) into the distributed matrix and sets BoomerAMG and PCG up for it.
+  /// The rank's piece of the mesh and its DOF map (the one `rows` numbers), for
+  /// the rigid-body modes; collective; ignored unless options.rigid_body_modes.
+  void set_coordinates(const Mesh& local_mesh, const DofMap& dofs);
+  /// Collective. Adds every rank's K_local (local free x local free) into the
+  /// distributed matrix and sets BoomerAMG and the Krylov solver up for it.
   /// Returns the set-up seconds.
   double assemble_matrix(const SparseMatrix& K_local);
-  /// Collective. x = K^-1 b for a right-hand side every rank holds in full
-  /// (serial free numbering); PCG + BoomerAMG (3 functions per node) to
-  /// ||r|| <= rtol ||b||; x: the full solution, on every rank.
+  /// Collective. x = K^-1 b, b consistent over the local free DOFs (only owned
+  /// rows are read); to ||r|| <= rtol ||b||; x: consistent.
   DistributedSolveResult solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 1e-10,
                                int max_iterations = 1000);
-  /// Both, for a right-hand side of which each rank holds its own elements' share.
-  DistributedSolveResult assemble_and_solve(const SparseMatrix& K_local, const Eigen::VectorXd& b_local,
-                                            Eigen::VectorXd& x, double rtol = 1e-10);
 
   const DistributedDofs& rows() const { return rows_; }
-  int rank() const { return rank_; }
-  int size() const { return size_; }
+  const DistributedSolverOptions& options() const { return options_; }
   /// Nonzeros this rank stores of the assembled matrix (its rows).
   long long local_nonzeros() const;
 
  private:
   struct Hypre;
-  MPI_Comm comm_;
-  int rank_ = 0, size_ = 1;
-  DistributedDofs rows_;
-  std::vector<int> row_of_free_;  ///< free index -> global row
+  const DistributedDofs& rows_;
+  DistributedSolverOptions options_;
+  int rank_ = 0;
+  Eigen::MatrixXd modes_;  ///< owned rows x 3 rigid rotations (empty without)
   std::unique_ptr<Hypre> hypre_;
 };
 
 /// The LinearSolver face of a distributed system, for Newton and the problems
 /// built on it: factorize() takes this rank's share of the matrix, solve() a
-/// right-hand side every rank holds in full (a gradient summed over ranks).
-/// Iterative: Newton's tolerances (set_relative_tolerance) reach hypre's PCG.
+/// consistent right-hand side. Iterative: Newton's tolerances
+/// (set_relative_tolerance) reach hypre's Krylov solver.
 class DistributedHypreSolver final : public LinearSolver {
  public:
-  DistributedHypreSolver(MPI_Comm comm, DistributedDofs rows, const DofMap& dofs);
-  std::string_view name() const override { return "distributed hypre-pcg+amg"; }
+  explicit DistributedHypreSolver(const DistributedDofs& rows, DistributedSolverOptions options = {});
+  std::string_view name() const override { return name_; }
   void analyze(const SparseMatrix&) override {}  // hypre has no separate symbolic phase: nothing to count
   bool factorize(const SparseMatrix& A) override;
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
@@ -89,13 +98,20 @@ class DistributedHypreSolver final : public LinearSolver {
   int last_iterations() const override { return last_.iterations; }
   std::string last_error() const override { return error_; }
   const DistributedSolveResult& last() const { return last_; }
+  DistributedLinearSystem& system() { return system_; }
   const DistributedLinearSystem& system() const { return system_; }
 
  private:
   DistributedLinearSystem system_;
+  std::string name_;
   double rtol_ = 1e-10;
   DistributedSolveResult last_;
   std::string error_;
 };
+
+/// A DistributedHypreSolver on `rows` with the rigid-body modes of the piece
+/// (mesh, dofs) set when the options ask for them.
+std::unique_ptr<LinearSolver> make_distributed_solver(const DistributedDofs& rows, const DistributedSolverOptions& options,
+                                                      const Mesh& mesh, const DofMap& dofs);
 
 }  // namespace hofem

@@ -59,7 +59,7 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
   double g_prev = 0.0, eta = 0.0;
   for (int it = 0; it < opt.max_iterations; ++it) {
     NewtonIteration rec;
-    rec.residual = g.norm();
+    rec.residual = problem.norm(g);
     rec.energy = E;
     if (rec.residual <= tol) {
       result.converged = true;
@@ -130,7 +130,7 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
       return result;
     }
     g_prev = rec.residual;
-    const double slope = g.dot(d);
+    const double slope = problem.dot(g, d);
     // Backtracking Armijo line search. Near convergence the energy decrease drops
     // below the rounding of E itself; a step that changes E by no more than that
     // rounding is accepted if it reduces the gradient.
@@ -148,7 +148,7 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
       }
       if (std::fabs(E_new - E) <= rounding) {
         problem.gradient(u_trial, g_new);
-        if (g_new.norm() < rec.residual) {
+        if (problem.norm(g_new) < rec.residual) {
           accepted = have_g_new = true;
           break;
         }
@@ -171,7 +171,7 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
     }
   }
   result.iterations = opt.max_iterations;
-  result.final_residual = g.norm();
+  result.final_residual = problem.norm(g);
   result.converged = result.final_residual <= tol;
   result.message = result.converged ? "converged at the iteration limit"
                                     : fmt::format("no convergence in {} iterations (|g| = {:.3e})", opt.max_iterations,

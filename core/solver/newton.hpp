@@ -14,6 +14,8 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+
 #include <string>
 #include <vector>
 
@@ -32,6 +34,11 @@ class NonlinearProblem {
   virtual void hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K, bool project) = 0;
   /// Representative force magnitude for the relative stopping rule (> 0).
   virtual double force_scale(const Eigen::VectorXd& g0) const = 0;
+  /// Inner product of two vectors of unknowns. A distributed problem (issue 7)
+  /// holds each rank's unknowns plus ghost copies of its neighbours' and sums the
+  /// owned entries over the ranks, so that every rank takes the same decisions.
+  virtual double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const { return a.dot(b); }
+  double norm(const Eigen::VectorXd& a) const { return std::sqrt(dot(a, a)); }
 };
 
 struct NewtonOptions {

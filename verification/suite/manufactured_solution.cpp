@@ -174,7 +174,7 @@ MmsResult run_mms(const MmsCase& c) {
   MmsResult r;
   r.cells = mesh.num_elements();
   r.nodes = mesh.num_nodes();
-  r.dofs = problem.dofs().num_free();
+  r.dofs = static_cast<int>(problem.global_free_dofs());
   r.h = p.h;
   r.newton_iterations = rep.newton_iterations;
   r.converged = rep.converged;
@@ -186,10 +186,18 @@ MmsResult run_mms(const MmsCase& c) {
   for (const auto& step : rep.steps)
     for (const auto& it : step.history) r.newton_residuals.push_back(it.residual);
 
-  const Eigen::VectorXd& u = problem.displacement();
-  const MmsErrors err = mms_errors(mesh, p.ustar, u);
+  // Distributed: each rank integrates the error over its own elements (its
+  // piece of the mesh); the squares add up over the ranks.
+  const DistributedMesh* piece = problem.distributed_mesh();
+  MmsErrors err = mms_errors(problem.mesh(), p.ustar, problem.displacement());
+  if (piece) {
+    err.l2 = std::sqrt(piece->sum(err.l2 * err.l2));
+    err.h1 = std::sqrt(piece->sum(err.h1 * err.h1));
+  }
   r.error_degree = err.degree;
-  if (!c.vtu.empty()) {
+  const Eigen::VectorXd u = piece ? piece->gather_nodal(problem.displacement()) : problem.displacement();
+  if (!c.vtu.empty() && piece) err.cell_l2 = piece->gather_elemental(err.cell_l2.row(0).transpose()).transpose();
+  if (!c.vtu.empty() && (!piece || piece->rank == 0)) {
     Eigen::MatrixXd disp = Eigen::Map<const Eigen::MatrixXd>(u.data(), 3, mesh.num_nodes());
     Eigen::MatrixXd exact(3, mesh.num_nodes());
     for (int i = 0; i < mesh.num_nodes(); ++i) exact.col(i) = p.ustar.value(mesh.nodes.col(i));

@@ -1,5 +1,5 @@
 // Element partitions and the distributed row numbering (issue 7's groundwork).
-#include "assembly/distributed_dofs.hpp"
+#include "mesh/local_mesh.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/mesh_partition.hpp"
 #include "mesh/tube_mesh.hpp"
@@ -60,59 +60,46 @@ TEST(MeshPartition, TwoPartsOfABoxCutAtTheMidPlane) {
   }
 }
 
-// One part: the distributed numbering is the serial free numbering, so 1-rank
-// and serial runs assemble the same rows in the same order.
-TEST(DistributedDofs, OnePartIsTheSerialNumbering) {
+// One part: the piece is the mesh itself, node for node and element for
+// element, so a one-rank run numbers everything as the serial run does.
+TEST(LocalMesh, OnePartIsTheWholeMesh) {
   const Mesh mesh = box_mesh(unit_cube(3), CellType::Tetrahedron, 2);
-  const DofMap dofs(mesh.num_nodes(), mesh.node_set("xmin"));
-  const DistributedDofs d = distribute_dofs(mesh, dofs, std::vector<int>(mesh.num_elements(), 0), 1);
-  EXPECT_EQ(d.global_row, dofs.free_index());
-  EXPECT_EQ(d.first_row, (std::vector<int>{0, dofs.num_free()}));
-  EXPECT_TRUE(d.ghost_rows[0].empty());
+  const LocalMesh local = extract_part(mesh, std::vector<int>(mesh.num_elements(), 0), 0);
+  EXPECT_EQ(local.mesh.nodes, mesh.nodes);
+  EXPECT_EQ(local.mesh.elements, mesh.elements);
+  EXPECT_EQ(local.mesh.node_sets, mesh.node_sets);
+  EXPECT_EQ(local.owned_nodes(), mesh.num_nodes());
 }
 
-// K parts: the rows are a permutation of the free DOFs, each part's rows are
-// its owned nodes' DOFs and contiguous, constrained DOFs have none, and a
-// part's ghost rows are exactly the rows of its elements' DOFs it does not own.
-TEST(DistributedDofs, PartsOwnContiguousRowsAndListTheirGhosts) {
+// K parts: each piece has its part's elements over the nodes they touch; every
+// node is owned by exactly one piece (the lowest part among its elements), and
+// each piece's ghosts are what partition_quality counts; node sets keep the
+// nodes the piece has. Bad input is refused.
+TEST(LocalMesh, PiecesCoverTheMeshOnce) {
   const Mesh mesh = box_mesh(BoxSpec{{0, 0, 0}, {2, 1, 1}, {6, 3, 3}}, CellType::Hexahedron, 2);
-  const DofMap dofs(mesh.num_nodes(), mesh.node_set("xmin"));
   const int parts = 3;
   const std::vector<int> part = partition_elements(mesh, parts);
-  const DistributedDofs d = distribute_dofs(mesh, dofs, part, parts);
-  const std::vector<int> owner = node_owners(mesh, part);
-  std::vector<int> rows;
-  for (int dof = 0; dof < dofs.num_dofs(); ++dof) {
-    const int row = d.global_row[dof];
-    if (dofs.free_index(dof) < 0) {
-      EXPECT_EQ(row, -1);
-      continue;
-    }
-    const int p = owner[dof / 3];
-    EXPECT_GE(row, d.first_row[p]);
-    EXPECT_LT(row, d.first_row[p + 1]);
-    rows.push_back(row);
-  }
-  std::sort(rows.begin(), rows.end());
-  for (int i = 0; i < static_cast<int>(rows.size()); ++i) ASSERT_EQ(rows[i], i);
-  EXPECT_EQ(d.first_row.back(), dofs.num_free());
+  const PartitionQuality q = partition_quality(mesh, part, parts);
+  std::vector<int> owned_by(mesh.num_nodes(), 0);
+  int elements = 0;
   for (int p = 0; p < parts; ++p) {
-    std::set<int> expected;
-    for (int e = 0; e < mesh.num_elements(); ++e)
-      if (part[e] == p)
-        for (int i = 0; i < mesh.nodes_per_element(); ++i)
-          for (int c = 0; c < 3; ++c) {
-            const int row = d.global_row[3 * mesh.elements(i, e) + c];
-            if (row >= 0 && (row < d.first_row[p] || row >= d.first_row[p + 1])) expected.insert(row);
-          }
-    EXPECT_EQ(d.ghost_rows[p], std::vector<int>(expected.begin(), expected.end())) << p;
-    EXPECT_EQ(d.halo_bytes(p), 8LL * static_cast<long long>(expected.size()));
+    const LocalMesh local = extract_part(mesh, part, p);
+    elements += local.mesh.num_elements();
+    EXPECT_EQ(local.mesh.num_elements(), q.elements[p]);
+    EXPECT_EQ(local.owned_nodes(), q.owned_nodes[p]);
+    EXPECT_EQ(local.mesh.num_nodes() - local.owned_nodes(), q.ghost_nodes[p]);
+    for (int n = 0; n < local.mesh.num_nodes(); ++n) {
+      if (local.owns(n)) ++owned_by[local.global_node[n]];
+      EXPECT_EQ(local.mesh.nodes.col(n), mesh.nodes.col(local.global_node[n]));
+    }
+    for (int n : local.mesh.node_set("xmin")) EXPECT_EQ(mesh.nodes(0, local.global_node[n]), 0.0);
+    const std::vector<int> mapped = to_local_nodes(local, mesh.node_set("xmin"));
+    EXPECT_EQ(mapped, local.mesh.node_set("xmin"));
   }
-  EXPECT_GT(d.ghost_rows[1].size(), 0u);
-  EXPECT_THROW(distribute_dofs(mesh, dofs, std::vector<int>(3, 0), parts), std::invalid_argument);
-  std::vector<int> bad = part;
-  bad[0] = parts;
-  EXPECT_THROW(distribute_dofs(mesh, dofs, bad, parts), std::invalid_argument);
+  EXPECT_EQ(elements, mesh.num_elements());
+  for (int n = 0; n < mesh.num_nodes(); ++n) ASSERT_EQ(owned_by[n], 1) << "node " << n;
+  EXPECT_THROW(extract_part(mesh, std::vector<int>(3, 0), 0), std::invalid_argument);
+  EXPECT_THROW(extract_part(mesh, part, parts), std::invalid_argument);  // a part without elements
 }
 
 }  // namespace
