@@ -9,6 +9,7 @@
 #include "fcm_convergence_checks.hpp"
 #include "fcm_rigid_motion_checks.hpp"
 #include "material_checks.hpp"
+#include "partition_checks.hpp"
 #include "quadrature_checks.hpp"
 #include "solver_checks.hpp"
 
@@ -23,6 +24,7 @@ Report run_fast_checks() {
   add_patch_checks(report);
   add_dynamics_checks(report);
   add_embedded_quadrature_checks(report);
+  add_partition_checks(report);
   return report;
 }
 

@@ -12,7 +12,7 @@ struct SuiteOptions {
   bool solvers = true;
 };
 
-/// Fast checks: quadrature, bases, materials, elements, patch tests (seconds).
+/// Fast checks: quadrature, bases, materials, elements, patch tests, partition quality (seconds).
 Report run_fast_checks();
 
 /// Every check of the suite: the fast ones, the solver checks and the convergence study.
