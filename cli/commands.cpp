@@ -214,7 +214,8 @@ int run_mms(const MmsOptions& o) {
                                      {"quadrature_degree", r.quadrature_degree}, {"error_quadrature_degree", r.error_degree},
                                      {"setup_seconds", r.setup_seconds}, {"assembly_seconds", r.assembly_seconds},
                                      {"solve_seconds", r.solve_seconds}, {"total_seconds", r.total_seconds},
-                                     {"message", r.message}, {"distributed", o.distributed}, {"ranks", ranks}}
+                                     {"message", r.message}, {"distributed", o.distributed}, {"ranks", ranks},
+                                     {"per_rank", o.distributed ? to_json(r.ranks) : nlohmann::json::array()}}
                             .dump());
   } else {
     fmt::print("{} {} order {} n={}{}: {} cells, {} DOFs\n  L2 error {:.6e}   H1 error {:.6e}\n  Newton {} ({})\n"

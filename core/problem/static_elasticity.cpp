@@ -88,6 +88,11 @@ StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, s
   setup_seconds_hint_ = seconds_since(t0);
 }
 
+RankStats StaticElasticity::rank_stats() const {
+  if (!dist_) throw std::logic_error("StaticElasticity::rank_stats: not a distributed problem");
+  return hofem::rank_stats(*dist_, *rows_, *assembler_, *solver_);
+}
+
 double StaticElasticity::external_work() const {
   // Consistent vectors: owned nodes only, summed over ranks (each DOF once).
   return dist_ ? dist_->nodes.dot(f_ext_, u_full_) : f_ext_.dot(u_full_);

@@ -9,6 +9,7 @@
 #include "assembly/dof_map.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
+#include "problem/rank_stats.hpp"
 #include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/newton.hpp"
@@ -92,6 +93,9 @@ class StaticElasticity final : public NonlinearProblem {
   /// Distributed runs: the piece, its halo and the global numbering; else null.
   const DistributedMesh* distributed_mesh() const { return dist_.get(); }
   const DistributedDofs* distributed_dofs() const { return rows_.get(); }
+  /// Distributed: this rank's figures (mesh piece, halo, matrix, AMG and Krylov
+  /// timings) so far; collective-free. Serial: throws std::logic_error.
+  RankStats rank_stats() const;
   /// Free DOFs over all ranks.
   long long global_free_dofs() const { return rows_ ? rows_->global_rows : dofs_.num_free(); }
   const Assembler& assembler() const { return *assembler_; }

@@ -72,6 +72,20 @@ class DistributedLinearSystem {
   const DistributedSolverOptions& options() const { return options_; }
   /// Nonzeros this rank stores of the assembled matrix (its rows).
   long long local_nonzeros() const;
+  /// Values this rank receives per matrix-vector product: the distinct
+  /// off-rank columns of its rows (hypre's off-diagonal block). Bigger than the
+  /// piece's ghost DOFs: an owned node on the interface also couples to nodes
+  /// of the neighbour's elements that this rank's elements do not touch.
+  long long matvec_receive_values() const;
+  /// Time and counts over the object's life.
+  struct Timings {
+    int setups = 0, solves = 0;
+    long long iterations = 0;
+    double ij_seconds = 0.0;      ///< AddToValues + Assemble (the matrix's communication)
+    double amg_seconds = 0.0;     ///< BoomerAMG set-up
+    double krylov_seconds = 0.0;  ///< iterations (and the ghost update)
+  };
+  const Timings& timings() const { return timings_; }
 
  private:
   struct Hypre;
@@ -80,6 +94,7 @@ class DistributedLinearSystem {
   int rank_ = 0;
   Eigen::MatrixXd modes_;  ///< owned rows x 3 rigid rotations (empty without)
   std::unique_ptr<Hypre> hypre_;
+  Timings timings_;
 };
 
 /// The LinearSolver face of a distributed system, for Newton and the problems

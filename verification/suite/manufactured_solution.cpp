@@ -195,6 +195,7 @@ MmsResult run_mms(const MmsCase& c) {
     err.h1 = std::sqrt(piece->sum(err.h1 * err.h1));
   }
   r.error_degree = err.degree;
+  if (piece) r.ranks = gather_rank_stats(problem.rank_stats(), piece->comm);
   const Eigen::VectorXd u = piece ? piece->gather_nodal(problem.displacement()) : problem.displacement();
   if (!c.vtu.empty() && piece) err.cell_l2 = piece->gather_elemental(err.cell_l2.row(0).transpose()).transpose();
   if (!c.vtu.empty() && (!piece || piece->rank == 0)) {

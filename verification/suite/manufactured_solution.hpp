@@ -59,6 +59,8 @@ struct MmsResult {
   int quadrature_degree = 0, error_degree = 0;
   std::vector<double> newton_residuals;  ///< |g| before each Newton step, all load steps
   std::string message;
+  /// Distributed runs: every rank's figures (RankStats), the same on every rank.
+  std::vector<RankStats> ranks;
 };
 
 /// The problem of a case, built but not solved (run_mms solves it with Newton;
