@@ -80,9 +80,17 @@ DistributedMesh distribute_mesh(MPI_Comm comm, const Mesh& global) {
   MPI_Comm_size(comm, &ranks);
   // RCB is deterministic, so every rank computes the same partition without
   // communication; a run that reads a pre-partitioned mesh would start here.
-  LocalMesh local = extract_part(global, partition_elements(global, ranks), rank);
-  Halo halo = node_halo(comm, local);
-  return DistributedMesh{comm, rank, ranks, std::move(local), std::move(halo)};
+  return distribute_piece(comm, extract_part(global, partition_elements(global, ranks), rank));
+}
+
+DistributedMesh distribute_piece(MPI_Comm comm, LocalMesh piece) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  if (piece.part != rank)
+    throw std::invalid_argument(fmt::format("distribute_piece: rank {} was given part {}", rank, piece.part));
+  Halo halo = node_halo(comm, piece);
+  return DistributedMesh{comm, rank, ranks, std::move(piece), std::move(halo)};
 }
 
 DistributedDofs distribute_dofs(const DistributedMesh& dm, const DofMap& dofs) {

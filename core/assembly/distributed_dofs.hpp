@@ -45,6 +45,9 @@ struct DistributedMesh {
 /// Collective: partitions `global` over the ranks of comm (partition_elements)
 /// and keeps this rank's piece. Every rank passes the same global mesh.
 DistributedMesh distribute_mesh(MPI_Comm comm, const Mesh& global);
+/// Collective: a piece each rank made itself (e.g. box_piece: no rank holds the
+/// whole mesh); its part must be the rank.
+DistributedMesh distribute_piece(MPI_Comm comm, LocalMesh piece);
 
 struct DistributedDofs {
   std::int64_t first_row = 0;    ///< this rank owns rows [first_row, first_row + owned_rows)

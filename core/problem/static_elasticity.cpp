@@ -62,6 +62,43 @@ StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, s
       external = std::move(mine);
     }
   }
+  finish_setup(constrained, rules, external, body_force);
+  setup_seconds_hint_ = seconds_since(t0);
+}
+
+StaticElasticity::StaticElasticity(std::unique_ptr<DistributedMesh> piece, const Material& material,
+                                   std::vector<DirichletCondition> dirichlet, VectorField body_force,
+                                   StaticOptions options)
+    : mesh_(piece->mesh()), dist_(std::move(piece)), material_(material), dirichlet_(std::move(dirichlet)),
+      options_(std::move(options)) {
+  const auto t0 = Clock::now();
+  options_.distributed = true;
+  ensure_hypre();
+  validate(options_.distributed_solver);
+  if (!options_.element_rules.stiffness.empty() || !options_.element_rules.mass.empty() ||
+      options_.external_load.size() > 0)
+    throw std::invalid_argument("static problem: element rules and external loads need the global mesh (the other constructor)");
+  const Mesh& m = dist_->mesh();
+  // Each rank checks its own piece; all learn whether any failed (the message is the failing rank's).
+  std::string problem;
+  try {
+    validate_mesh(m);
+  } catch (const MeshError& e) {
+    problem = e.what();
+  }
+  if (any_rank(!problem.empty(), dist_->comm))
+    throw MeshError(problem.empty() ? std::string("static problem: another rank's piece of the mesh is invalid") : problem);
+  for (const auto& bc : dirichlet_)
+    for (int n : bc.nodes)
+      if (n < 0 || n >= m.num_nodes())
+        throw std::invalid_argument(fmt::format(
+            "static problem: Dirichlet node {} is out of range (the piece has {} nodes)", n, m.num_nodes()));
+  finish_setup(constrained_nodes(dirichlet_, {}), {}, Eigen::VectorXd(), body_force);
+  setup_seconds_hint_ = seconds_since(t0);
+}
+
+void StaticElasticity::finish_setup(const std::vector<int>& constrained, const ElementRules& rules,
+                                    const Eigen::VectorXd& external, const VectorField& body_force) {
   const Mesh& m = this->mesh();
   dofs_ = DofMap(m.num_nodes(), constrained);
   assembler_ = std::make_unique<Assembler>(m, dofs_, options_.quadrature_degree);
@@ -85,7 +122,6 @@ StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, s
   u_full_ = Eigen::VectorXd::Zero(3 * m.num_nodes());
   x_ = Eigen::Map<const Eigen::VectorXd>(m.nodes.data(), 3 * m.num_nodes());
   assembly_seconds_ = 0.0;
-  setup_seconds_hint_ = seconds_since(t0);
 }
 
 RankStats StaticElasticity::rank_stats() const {

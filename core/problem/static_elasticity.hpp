@@ -84,6 +84,13 @@ class StaticElasticity final : public NonlinearProblem {
   StaticElasticity(const Mesh& mesh, const Material& material, std::vector<DirichletCondition> dirichlet,
                    VectorField body_force, StaticOptions options = {});
 
+  /// Distributed (issue 7) on a piece each rank made itself (e.g. box_piece via
+  /// distribute_piece: no rank holds the whole mesh). Dirichlet node ids are the
+  /// piece's; options.distributed is implied; element rules and external loads
+  /// are not taken (they are given on a whole mesh). Collective.
+  StaticElasticity(std::unique_ptr<DistributedMesh> piece, const Material& material,
+                   std::vector<DirichletCondition> dirichlet, VectorField body_force, StaticOptions options = {});
+
   StaticReport solve();
 
   /// Displacement of every node of mesh(), 3 per node (valid after solve()).
@@ -114,9 +121,12 @@ class StaticElasticity final : public NonlinearProblem {
  private:
   void set_state(const Eigen::VectorXd& u_free);  // fills x_ and u_full_
   double external_work() const;                   // f_ext . u over the whole body
+  // The DOF map, assembler, solver and load on mesh() (the piece when distributed).
+  void finish_setup(const std::vector<int>& constrained, const ElementRules& rules, const Eigen::VectorXd& external,
+                    const VectorField& body_force);
   /// The tangent predictor from load `from` to `to` at state u (converged at `from`).
   Eigen::VectorXd predict(const Eigen::VectorXd& u, double from, double to);
-  const Mesh& mesh_;  ///< the given (global) mesh
+  const Mesh& mesh_;  ///< the given mesh (the piece, for the piece constructor)
   std::unique_ptr<DistributedMesh> dist_;  ///< distributed: this rank's piece (mesh() is its mesh)
   std::unique_ptr<DistributedDofs> rows_;  ///< distributed: global rows of the piece's free DOFs
   const Material& material_;

@@ -4,6 +4,8 @@
 #include "basis/basis_tabulation.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
+#include "mesh/box_partition.hpp"
+#include "parallel/mpi_runtime.hpp"
 #include "mesh/mesh_upgrade.hpp"
 #include "mesh/vtu_writer.hpp"
 #include "problem/static_elasticity.hpp"
@@ -104,10 +106,21 @@ MmsProblem::MmsProblem(const MmsCase& c) {
   material = make_material(linear ? "linear" : "neohookean", LameParameters::from_young_poisson(1.0, 0.3));
   ustar = ManufacturedDisplacement{linear ? 1.0 : 0.1};
 
-  mesh = c.cell == CellType::Tetrahedron ? box_tet_mesh(unit_cube(c.n)) : box_hex_mesh(unit_cube(c.n));
   h = 1.0 / c.n;
-  if (c.perturbed) perturb_interior_vertices(mesh, h, 0.1, 1000u + static_cast<unsigned>(c.n));
-  if (c.order > 1) mesh = upgrade_order(mesh, c.order);
+  if (c.distributed && !c.perturbed && c.vtu.empty()) {
+    // Each rank generates its own block of the cube: memory per rank ~ N / ranks.
+    ensure_hypre();
+    int rank = 0, ranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    piece = std::make_unique<DistributedMesh>(
+        distribute_piece(MPI_COMM_WORLD, box_piece(unit_cube(c.n), c.cell, c.order, ranks, rank)));
+  } else {
+    mesh = c.cell == CellType::Tetrahedron ? box_tet_mesh(unit_cube(c.n)) : box_hex_mesh(unit_cube(c.n));
+    if (c.perturbed) perturb_interior_vertices(mesh, h, 0.1, 1000u + static_cast<unsigned>(c.n));
+    if (c.order > 1) mesh = upgrade_order(mesh, c.order);
+  }
+  const Mesh& m = piece ? piece->mesh() : mesh;
 
   body_force = [this](const Eigen::Vector3d& X) {
     const Mat3 F = Mat3::Identity() + ustar.gradient(X);
@@ -115,9 +128,9 @@ MmsProblem::MmsProblem(const MmsCase& c) {
     ustar.hessians(X, H);
     return equilibrium_body_force(material->stress_derivative(F), H);
   };
-  dirichlet = {{mesh.node_set("boundary"), [this](const Eigen::Vector3d& X) { return ustar.value(X); }}};
-  options.quadrature_degree = default_quadrature_degree(mesh.cell, mesh.order, linear);
-  options.load_degree = 2 * mesh.order + 2;
+  dirichlet = {{m.node_set("boundary"), [this](const Eigen::Vector3d& X) { return ustar.value(X); }}};
+  options.quadrature_degree = default_quadrature_degree(m.cell, m.order, linear);
+  options.load_degree = 2 * m.order + 2;
   options.linear_solver = c.linear_solver;
   options.distributed = c.distributed;
   // The discretisation error is >= 1e-7 relative at every size run here; the
@@ -166,14 +179,24 @@ MmsErrors mms_errors(const Mesh& mesh, const ManufacturedDisplacement& ustar, co
 MmsResult run_mms(const MmsCase& c) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
-  const MmsProblem p(c);
-  const Mesh& mesh = p.mesh;
-  StaticElasticity problem(mesh, *p.material, p.dirichlet, p.body_force, p.options);
+  MmsProblem p(c);
+  const Mesh& mesh = p.mesh;  // empty for a distributed piece
+  const bool generated_piece = p.piece != nullptr;
+  const auto owned = generated_piece
+                        ? std::make_unique<StaticElasticity>(std::move(p.piece), *p.material, p.dirichlet,
+                                                             p.body_force, p.options)
+                        : std::make_unique<StaticElasticity>(mesh, *p.material, p.dirichlet, p.body_force, p.options);
+  StaticElasticity& problem = *owned;
   const StaticReport rep = problem.solve();
 
   MmsResult r;
   r.cells = mesh.num_elements();
   r.nodes = mesh.num_nodes();
+  if (generated_piece) {  // counted over the pieces: each element once, each node by its owner
+    const DistributedMesh& d = *problem.distributed_mesh();
+    r.cells = static_cast<int>(d.sum(d.local.mesh.num_elements()));
+    r.nodes = static_cast<int>(d.sum(d.local.owned_nodes()));
+  }
   r.dofs = static_cast<int>(problem.global_free_dofs());
   r.h = p.h;
   r.newton_iterations = rep.newton_iterations;

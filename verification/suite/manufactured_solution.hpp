@@ -77,7 +77,11 @@ struct MmsProblem {
   bool linear = true;  ///< linear elasticity (one linear solve is the whole solution)
   std::unique_ptr<Material> material;
   ManufacturedDisplacement ustar;
-  Mesh mesh;
+  Mesh mesh;  ///< empty when `piece` is set
+  /// Distributed, unperturbed cases without VTU output (issue 7): this rank's
+  /// piece of the cube, generated directly (box_piece), so no rank builds the
+  /// whole mesh; `dirichlet` then names the piece's nodes.
+  std::unique_ptr<DistributedMesh> piece;
   double h = 0.0;
   VectorField body_force;
   std::vector<DirichletCondition> dirichlet;

@@ -1,0 +1,146 @@
+#include "mesh/box_partition.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace hofem {
+
+namespace {
+
+using Block = std::array<std::array<int, 2>, 3>;
+
+void bisect(const BoxSpec& box, const Block& block, int parts, int first, std::vector<Block>& out) {
+  if (parts == 1) {
+    out[first] = block;
+    return;
+  }
+  // The longest side in length; ties to the lowest axis.
+  int axis = 0;
+  double longest = -1.0;
+  for (int c = 0; c < 3; ++c) {
+    const double length = (box.upper[c] - box.lower[c]) * (block[c][1] - block[c][0]) / box.cells[c];
+    if (length > longest * (1.0 + 1e-12)) longest = length, axis = c;
+  }
+  const int lower_parts = parts / 2, count = block[axis][1] - block[axis][0];
+  const int cut = block[axis][0] + static_cast<int>(std::lround(static_cast<double>(count) * lower_parts / parts));
+  if (cut <= block[axis][0] || cut >= block[axis][1])
+    throw MeshError(fmt::format("box partition: {} cubes along direction {} cannot be split into {} parts", count, axis,
+                                parts));
+  Block low = block, high = block;
+  low[axis][1] = cut;
+  high[axis][0] = cut;
+  bisect(box, low, lower_parts, first, out);
+  bisect(box, high, parts - lower_parts, first + lower_parts, out);
+}
+
+}  // namespace
+
+std::vector<Block> box_blocks(const BoxSpec& box, int parts) {
+  if (parts < 1) throw MeshError(fmt::format("box partition: need >= 1 parts, got {}", parts));
+  std::vector<Block> out(parts);
+  bisect(box, Block{{{0, box.cells[0]}, {0, box.cells[1]}, {0, box.cells[2]}}}, parts, 0, out);
+  return out;
+}
+
+LocalMesh box_piece(const BoxSpec& box, CellType cell, int order, int parts, int p) {
+  const std::vector<Block> blocks = box_blocks(box, parts);
+  if (p < 0 || p >= parts) throw MeshError(fmt::format("box partition: part {} outside [0, {})", p, parts));
+  const Block& mine = blocks[p];
+  // The block's cubes as a box of its own: the same Kuhn split and node order
+  // per cube as the whole box (box_tet_mesh is translation invariant).
+  BoxSpec sub;
+  for (int c = 0; c < 3; ++c) {
+    const double h = (box.upper[c] - box.lower[c]) / box.cells[c];
+    sub.lower[c] = box.lower[c] + h * mine[c][0];
+    sub.upper[c] = box.lower[c] + h * mine[c][1];
+    sub.cells[c] = mine[c][1] - mine[c][0];
+  }
+  Mesh m = box_mesh(sub, cell, order);
+  const int q = order;  // lattice refinement: p for Tet(p), 1 for Hex8, 2 for Hex20
+  std::array<long long, 3> points{};
+  for (int c = 0; c < 3; ++c) points[c] = static_cast<long long>(q) * box.cells[c] + 1;
+  // Lattice index of every node, from its coordinates (exact up to rounding far below half a lattice step).
+  const int n = m.num_nodes();
+  std::vector<std::array<long long, 3>> index(n);
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double step = (box.upper[c] - box.lower[c]) / (points[c] - 1);
+      index[i][c] = std::llround((m.nodes(c, i) - box.lower[c]) / step);
+    }
+  auto id_of = [&](const std::array<long long, 3>& I) { return I[0] + points[0] * (I[1] + points[1] * I[2]); };
+  // Owner: the lowest part among the cubes whose closure holds the node.
+  auto part_of_cube = [&](const std::array<long long, 3>& cube) {
+    for (int b = 0; b < parts; ++b) {
+      bool inside = true;
+      for (int c = 0; c < 3 && inside; ++c) inside = cube[c] >= blocks[b][c][0] && cube[c] < blocks[b][c][1];
+      if (inside) return b;  // blocks in part order: the first hit is the part
+    }
+    return parts;  // not reached: the blocks tile the box
+  };
+  auto owner_of = [&](const std::array<long long, 3>& I) {
+    std::array<std::vector<long long>, 3> cubes;
+    for (int c = 0; c < 3; ++c) {
+      const long long k = I[c] / q;
+      if (I[c] % q == 0) {
+        if (k - 1 >= 0) cubes[c].push_back(k - 1);
+        if (k < box.cells[c]) cubes[c].push_back(k);
+      } else {
+        cubes[c].push_back(k);
+      }
+    }
+    int owner = parts;
+    for (long long a : cubes[0])
+      for (long long b : cubes[1])
+        for (long long d : cubes[2]) owner = std::min(owner, part_of_cube({a, b, d}));
+    return owner;
+  };
+  // Local nodes in ascending global id, as LocalMesh requires.
+  std::vector<int> order_of(n);
+  std::iota(order_of.begin(), order_of.end(), 0);
+  std::sort(order_of.begin(), order_of.end(), [&](int a, int b) { return id_of(index[a]) < id_of(index[b]); });
+  std::vector<int> new_id(n);
+  for (int k = 0; k < n; ++k) new_id[order_of[k]] = k;
+  LocalMesh local;
+  local.part = p;
+  local.global_nodes = static_cast<int>(points[0] * points[1] * points[2]);
+  local.global_elements = (cell == CellType::Tetrahedron ? 6 : 1) * box.cells[0] * box.cells[1] * box.cells[2];
+  local.mesh.cell = m.cell;
+  local.mesh.order = m.order;
+  local.mesh.nodes.resize(3, n);
+  local.global_node.resize(n);
+  local.owner.resize(n);
+  const char* names[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin", "zmax"}};
+  std::vector<int> boundary;
+  for (int k = 0; k < n; ++k) {
+    const auto& I = index[order_of[k]];
+    local.global_node[k] = id_of(I);
+    local.owner[k] = owner_of(I);
+    bool on = false;
+    for (int c = 0; c < 3; ++c) {
+      // One formula on every rank: shared nodes get bitwise equal coordinates.
+      local.mesh.nodes(c, k) = box.lower[c] + (box.upper[c] - box.lower[c]) * static_cast<double>(I[c]) / (points[c] - 1);
+      if (I[c] == 0) local.mesh.node_sets[names[c][0]].push_back(k), on = true;
+      if (I[c] == points[c] - 1) local.mesh.node_sets[names[c][1]].push_back(k), on = true;
+    }
+    if (on) boundary.push_back(k);
+  }
+  for (const auto& face : names)
+    for (const char* name : face) local.mesh.node_sets[name];  // present even if empty on this piece
+  local.mesh.node_sets["boundary"] = std::move(boundary);
+  local.mesh.elements = m.elements;
+  for (Eigen::Index e = 0; e < m.elements.cols(); ++e)
+    for (Eigen::Index i = 0; i < m.elements.rows(); ++i) local.mesh.elements(i, e) = new_id[m.elements(i, e)];
+  // Global element index: the cube's index (x fastest), times 6 tets for tets, plus the tet.
+  const int per_cube = cell == CellType::Tetrahedron ? 6 : 1;
+  for (int kz = mine[2][0]; kz < mine[2][1]; ++kz)
+    for (int jy = mine[1][0]; jy < mine[1][1]; ++jy)
+      for (int ix = mine[0][0]; ix < mine[0][1]; ++ix)
+        for (int t = 0; t < per_cube; ++t)
+          local.global_element.push_back(per_cube * (ix + box.cells[0] * (jy + box.cells[1] * kz)) + t);
+  return local;
+}
+
+}  // namespace hofem
