@@ -5,10 +5,16 @@
 
 For each case (Neo-Hookean manufactured solution, P1-P3 tets) and rank count,
 runs `mpirun -np K build/bin/hofem mms --distributed --json` three times and
-keeps the median wall time (the machines are noisy), and asks
-`hofem mesh --partition K --json` for the partition's halo: ghost nodes per
-rank and the bytes one matrix-vector product receives. Writes OUT_DIR/scaling.json
-(measured values only, with each rank's peak resident memory from GNU time) and prints a table with speed-ups relative to one rank.
+keeps the median wall time (the machines are noisy), with each rank's figures
+as the run reports them (`per_rank`: its piece of the mesh, ghosts, pattern and
+matrix nonzeros, the doubles one matrix-vector product receives, AMG set-up and
+Krylov seconds) and its peak resident memory (GNU time), plus the partition's
+cut faces and imbalance from `hofem mesh --partition K --json`. A tiny run (the
+baseline: MPI, hypre and the program with next to no mesh) separates fixed
+memory from memory per unknown. The cube is generated piece by piece (no rank
+builds it whole); what building it whole costs (the path of scenes and mesh
+files) is measured by `hofem mesh` on the same cube. Writes OUT_DIR/scaling.json (measured values
+only) and prints a table with speed-ups relative to the first rank count.
 """
 import json
 import statistics
@@ -48,10 +54,35 @@ def mpirun(ranks, args):
             "sh", "-c", f'exec /usr/bin/time -f "%M" -o {RSS_PREFIX}.$OMPI_COMM_WORLD_RANK {command}']
 
 
+def mesh_peak(n, order):
+    _, rss = run_with_rss(["sh", "-c", f'exec /usr/bin/time -f "%M" -o {RSS_PREFIX}.0 build/bin/hofem mesh '
+                                       f'--box {n} --cell tet --order {order} --json'])
+    return rss[0]
+
+
+def measure_whole_mesh(rows):
+    """The other input path (scenes, mesh files): every rank builds the whole mesh
+    before keeping its piece. Its cost, measured directly: the peak memory of
+    building the cube whole (`hofem mesh`, one process, no MPI), less that of a
+    1-cell mesh (the program's own baseline)."""
+    baseline = mesh_peak(1, 1)
+    out = []
+    for order, n in CASES:
+        peak = mesh_peak(n, order)
+        dofs = next(r["dofs"] for r in rows if r["order"] == order and r["n"] == n)
+        out.append({"order": order, "n": n, "dofs": dofs, "peak_rss_bytes": peak})
+        print(f"P{order} n={n}: building the whole mesh peaks at {peak / 2**20:.1f} MiB "
+              f"(1-cell mesh: {baseline / 2**20:.1f} MiB)", flush=True)
+    return {"whole_mesh_input": out, "whole_mesh_baseline_rss_bytes": baseline}
+
+
 def main():
     out_dir = Path(sys.argv[1] if len(sys.argv) > 1 else "reports/mpi")
     ranks = [int(r) for r in sys.argv[2:]] or [1, 2]
     out_dir.mkdir(parents=True, exist_ok=True)
+    _, baseline_rss = run_with_rss(mpirun(1, ["mms", "--problem", "linear", "--order", "1", "--n", "1", "--distributed",
+                                              "--json"]))
+    print(f"baseline (1 cell, 1 rank): peak RSS {baseline_rss[0] / 2**20:.0f} MiB", flush=True)
     rows = []
     for order, n in CASES:
         for k in ranks:
@@ -72,14 +103,18 @@ def main():
                 "ghost_nodes": part["ghost_nodes"], "halo_bytes_per_exchange": part["halo_bytes_per_exchange"],
                 "cut_faces": part["cut_faces"], "imbalance": part["imbalance"],
                 "peak_rss_bytes_per_rank": rss, "nodes": result["nodes"],
+                "per_rank": result["per_rank"],
             })
+            matvec = max(r["matvec_receive_bytes"] for r in result["per_rank"])
             print(f"P{order} n={n} ranks={k}: {rows[-1]['dofs']} DOFs, median {rows[-1]['wall_seconds_median']:.2f} s, "
                   f"Newton {result['newton_iterations']}, L2 {result['l2_error']:.6e}, "
-                  f"halo {max(part['halo_bytes_per_exchange'])} B", flush=True)
+                  f"peak RSS/rank {max(rss) / 2**20:.0f} MiB, matvec receives {matvec} B/rank", flush=True)
+    whole_mesh = measure_whole_mesh(rows)
     base = {(r["order"], r["n"]): r["wall_seconds_median"] for r in rows if r["ranks"] == ranks[0]}
     for r in rows:
         r["speedup_vs_first"] = base[(r["order"], r["n"])] / r["wall_seconds_median"]
-    (out_dir / "scaling.json").write_text(json.dumps({"cases": rows, "ranks": ranks, "repeats": REPEATS}, indent=1))
+    (out_dir / "scaling.json").write_text(json.dumps({"cases": rows, "ranks": ranks, "repeats": REPEATS,
+                                                      "baseline_rss_bytes": baseline_rss[0], **whole_mesh}, indent=1))
     print(f"\n{'case':<10}{'DOFs':>9}" + "".join(f"{'K=' + str(k) + ' s':>10}" for k in ranks) + f"{'speed-up':>10}")
     for order, n in CASES:
         sel = {r["ranks"]: r for r in rows if r["order"] == order and r["n"] == n}

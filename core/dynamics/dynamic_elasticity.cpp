@@ -152,6 +152,11 @@ const DynamicsStats& DynamicElasticity::stats() const {
   return stats_;
 }
 
+RankStats DynamicElasticity::rank_stats() const {
+  if (!dist_ || !rows_ || !solver_) throw std::logic_error("DynamicElasticity::rank_stats: not a distributed run that has stepped");
+  return hofem::rank_stats(*dist_, *rows_, *assembler_, *solver_);
+}
+
 void DynamicElasticity::ensure_consistent_mass() {
   if (M_.size() > 0) return;
   M_ = assembler_->mass_matrix(options_.density, mass_degree_);

@@ -190,6 +190,7 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
                                                 : 0},
                    {"assembly_seconds", r.assembly_seconds},
                    {"solve_seconds", r.solve_seconds}};
+    if (piece) st["per_rank"] = to_json(gather_rank_stats(problem.rank_stats(), piece->comm));
   } else {
     DynamicsOptions dynamics = s.dynamics;
     dynamics.distributed = options.distributed;
@@ -246,6 +247,7 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     st["steps_done"] = done;
     st["stepping_seconds"] = std::chrono::duration<double>(Clock::now() - t_steps).count();  // frames included
     st["built"] = stats_json(sim.stats());
+    if (piece && done > 0) st["per_rank"] = to_json(gather_rank_stats(sim.rank_stats(), piece->comm));
     if (result.ok) result.message = fmt::format("{} steps to t = {:.6g}", done, sim.time());
   }
   st["ranks"] = 1;
