@@ -106,8 +106,9 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
     lumped_ = assembler_->lumped_mass(o.density, mass_degree_, lumping_);
     stats_.mass = lumping_ == MassLumping::RowSum ? "lumped (row-sum)" : "lumped (HRZ)";
     // Over the free DOFs: unsupported finite-cell nodes (constrained) have none.
-    Eigen::VectorXd nodal = dofs_.restrict(lumped_);  // distributed: this rank's elements' share, completed here
-    complete_free(nodal);
+    Eigen::VectorXd whole = lumped_;  // distributed: this rank's elements' share, completed here
+    if (dist_) dist_->nodes.sum(whole);
+    const Eigen::VectorXd nodal = dofs_.restrict(whole);
     double min_mass = nodal.size() > 0 ? nodal.minCoeff() : 1.0;
     if (dist_) MPI_Allreduce(MPI_IN_PLACE, &min_mass, 1, MPI_DOUBLE, MPI_MIN, dist_->comm);
     if (min_mass <= 0.0)

@@ -63,23 +63,27 @@ TEST(DistributedHalo, SumAndUpdateMatchTheGlobalPartition) {
   for (int n = 0; n < local.mesh.num_nodes(); ++n) EXPECT_EQ(ids[3 * n], static_cast<double>(local.global_node[n]));
   EXPECT_EQ(piece.nodes.ghosts(), ghosts);
   EXPECT_EQ(piece.nodes.bytes_per_update(), 24LL * ghosts);
-  if (piece.ranks == 1) EXPECT_EQ(ghosts, 0);
-  if (piece.ranks > 1) EXPECT_GT(piece.nodes.neighbours(), 0);
+  if (piece.ranks == 1) {
+    EXPECT_EQ(ghosts, 0);
+  } else {
+    EXPECT_GT(piece.nodes.neighbours(), 0);
+  }
   // dot() counts every node once: the sum of global ids over all nodes.
-  const Eigen::VectorXd first = ids.unaryExpr([](double) { return 0.0; });
-  Eigen::VectorXd x_only = first;
+  Eigen::VectorXd x_only = Eigen::VectorXd::Zero(ids.size());
   for (int n = 0; n < local.mesh.num_nodes(); ++n) x_only[3 * n] = 1.0;
   const double expected = 0.5 * static_cast<double>(mesh.num_nodes()) * (mesh.num_nodes() - 1);
   EXPECT_EQ(piece.nodes.dot(ids, x_only), expected);
   // Gathered fields arrive in global order on rank 0.
   const Eigen::VectorXd gathered = piece.gather_nodal(ids);
-  if (piece.rank == 0)
+  if (piece.rank == 0) {
     for (int n = 0; n < mesh.num_nodes(); ++n) EXPECT_EQ(gathered[3 * n + 2], n);
+  }
   Eigen::VectorXd element_ids(local.mesh.num_elements());
   for (int k = 0; k < local.mesh.num_elements(); ++k) element_ids[k] = local.global_element[k];
   const Eigen::VectorXd elements = piece.gather_elemental(element_ids);
-  if (piece.rank == 0)
+  if (piece.rank == 0) {
     for (int e = 0; e < mesh.num_elements(); ++e) EXPECT_EQ(elements[e], e);
+  }
 }
 
 // Rows: contiguous per rank, in rank order, owned nodes' DOFs in global node
@@ -109,8 +113,9 @@ TEST(DistributedHalo, GlobalRowsFollowOwnersAndGlobalNodeOrder) {
       EXPECT_LT(rows.row[i], rows.first_row + rows.owned_rows);
     }
   }
-  if (piece.ranks == 1)
+  if (piece.ranks == 1) {
     for (int i = 0; i < dofs.num_free(); ++i) EXPECT_EQ(rows.row[i], i);  // the serial numbering
+  }
   // A DOF map in which the owner constrains a shared node that a neighbour
   // leaves free is refused on every rank (the neighbour asks for a row the
   // owner does not have).
