@@ -198,6 +198,14 @@ int run_mms(const MmsOptions& o) {
   if (!o.vtu.empty()) ensure_parent_directory(o.vtu);
   verification::MmsCase c{o.problem, cell, o.order, o.n, o.perturbed, o.solver, o.vtu};
   c.distributed = o.distributed;
+  if ((o.krylov != "pcg" || o.amg != "amg" || o.rigid_body_modes) && !o.distributed)
+    throw UsageError("--krylov, --amg and --rigid-body-modes choose the distributed solver: add --distributed");
+  c.distributed_solver = {o.krylov, o.amg, o.rigid_body_modes};
+  try {
+    validate(c.distributed_solver);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
   const verification::MmsResult r = verification::run_mms(c);
   int rank = 0, ranks = 1;
   if (o.distributed) {  // the problem started MPI
@@ -215,6 +223,7 @@ int run_mms(const MmsOptions& o) {
                                      {"setup_seconds", r.setup_seconds}, {"assembly_seconds", r.assembly_seconds},
                                      {"solve_seconds", r.solve_seconds}, {"total_seconds", r.total_seconds},
                                      {"message", r.message}, {"distributed", o.distributed}, {"ranks", ranks},
+                                     {"distributed_solver", o.distributed ? nlohmann::json{{"krylov", o.krylov}, {"amg", o.amg}, {"rigid_body_modes", o.rigid_body_modes}} : nlohmann::json()},
                                      {"per_rank", o.distributed ? to_json(r.ranks) : nlohmann::json::array()}}
                             .dump());
   } else {

@@ -50,6 +50,9 @@ struct MmsOptions {
   bool json = false;
   std::string vtu;
   bool distributed = false;  ///< over the MPI ranks (run under mpirun -np K); rank 0 prints
+  std::string krylov = "pcg";   ///< distributed solver (DistributedSolverOptions)
+  std::string amg = "amg";
+  bool rigid_body_modes = false;
 };
 int run_mms(const MmsOptions& o);
 

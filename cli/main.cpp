@@ -60,6 +60,11 @@ int main(int argc, char** argv) {
   mms->add_flag("--distributed", mo.distributed,
                 "Partition the elements over the MPI ranks and solve on hypre (mpirun -np K hofem mms ...; rank 0 prints)");
   mms->add_option("--vtu", mo.vtu, "Write the solution (displacement, exact displacement, L2 error per cell) to this .vtu");
+  mms->add_option("--krylov", mo.krylov, "With --distributed: hypre's pcg or gmres")->capture_default_str();
+  mms->add_option("--amg", mo.amg, "With --distributed: BoomerAMG variant (amg, amg-nodal, amg-aggressive)")
+      ->capture_default_str();
+  mms->add_flag("--rigid-body-modes", mo.rigid_body_modes,
+                "With --distributed: rigid rotations as BoomerAMG interpolation vectors (nodal coarsening)");
 
   hofem::cli::VerifyOptions vo;
   auto* verify = app.add_subcommand("verify", "Run the verification suite and write its JSON report");

@@ -186,6 +186,12 @@ def main():
     L += ["", f"Baseline (MPI, hypre and the program on a 1-cell mesh): {gib(base)} peak RSS.",
           "Communication per Krylov iteration (measured, fine level): a matrix-vector product receives the",
           "values above, 8 bytes each; the V-cycle's coarser levels add exchanges not counted here.", "",
+          "## Distributed solver options (measured, one run each)", "",
+          "| case | ranks | options | Krylov its / solve | AMG set-up s | Krylov s | total s |",
+          "|---|---:|---|---:|---:|---:|---:|",
+          *[f"| P{r['order']} n={r['n']} | {r['ranks']} | {r['options']} | {r['krylov_iterations_per_solve']:.1f} | "
+            f"{r['amg_setup_seconds_per_setup']:.3f} | {r['krylov_seconds']:.2f} | {r['total_seconds']:.2f} |"
+            for r in scaling.get("solver_options", [])], "",
           "## Derived (arithmetic on the measurements)", "",
           "Memory per rank as M(K) = B + R N + D N / K: B the baseline; D, what is split, through the two runs",
           "of generated pieces (R = 0 there by construction); R, what every rank holds whatever K on the",

@@ -133,6 +133,7 @@ MmsProblem::MmsProblem(const MmsCase& c) {
   options.load_degree = 2 * m.order + 2;
   options.linear_solver = c.linear_solver;
   options.distributed = c.distributed;
+  options.distributed_solver = c.distributed_solver;
   // The discretisation error is >= 1e-7 relative at every size run here; the
   // nonlinear solve is converged to 1e-10 of the load so it does not pollute it.
   options.newton.rtol = 1e-10;
