@@ -148,7 +148,8 @@ const DynamicsStats& DynamicElasticity::stats() const {
   const long long evaluations = stats_.energy_evaluations + stats_.gradient_evaluations + stats_.hessian_assemblies;
   stats_.polar_decompositions =
       material_.needs_polar_decomposition()
-          ? evaluations * mesh_.num_elements() * static_cast<long long>(assembler_->rule().size())
+          ? evaluations * (dist_ ? dist_->local.global_elements : mesh_.num_elements()) *
+                static_cast<long long>(assembler_->rule().size())
           : 0;
   return stats_;
 }
@@ -419,7 +420,9 @@ StepReport DynamicElasticity::step() {
   }
   if (report.ok) {
     t_ = t_old + options_.dt;
-    if (!all_finite(x_) || !all_finite(v_)) {
+    bool finite = all_finite(x_) && all_finite(v_);
+    if (dist_) finite = !any_rank(!finite, dist_->comm);  // every rank rolls back together
+    if (!finite) {
       report.ok = false;
       report.message = fmt::format("t = {:.6g}: non-finite positions or velocities", t_);
     } else if (explicit_scheme) {

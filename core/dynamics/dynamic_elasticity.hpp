@@ -176,6 +176,7 @@ class DynamicElasticity {
     if (rows_) rows_->free.sum(partial);
   }
   const std::vector<char>* counted_nodes() const { return dist_ ? &owned_nodes_ : nullptr; }
+  MPI_Comm comm() const { return dist_ ? dist_->comm : MPI_COMM_WORLD; }
   Eigen::VectorXd stiffness_times(const Eigen::VectorXd& x, const Eigen::VectorXd& w);
   void impose_motion(double t, Eigen::VectorXd& x, Eigen::VectorXd* v) const;
   double kinetic_energy() const;

@@ -66,7 +66,7 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd g_all;
     double psi = 0.0;
-    on_all_ranks_or_throw<MaterialDomainError>(s_.dist_ != nullptr, MPI_COMM_WORLD, kOutside,
+    on_all_ranks_or_throw<MaterialDomainError>(s_.dist_ != nullptr, s_.comm(), kOutside,
                                                [&] { psi = s_.assembler_->gradient(s_.material_, x_, g_all); });
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.gradient_evaluations;
@@ -78,7 +78,7 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
     set(y);
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd g_all;
-    on_all_ranks_or_throw<MaterialDomainError>(s_.dist_ != nullptr, MPI_COMM_WORLD, kOutside,
+    on_all_ranks_or_throw<MaterialDomainError>(s_.dist_ != nullptr, s_.comm(), kOutside,
                                                [&] { s_.assembler_->hessian(s_.material_, x_, g_all, K, project); });
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.hessian_assemblies;

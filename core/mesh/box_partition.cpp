@@ -105,7 +105,7 @@ LocalMesh box_piece(const BoxSpec& box, CellType cell, int order, int parts, int
   for (int k = 0; k < n; ++k) new_id[order_of[k]] = k;
   LocalMesh local;
   local.part = p;
-  local.global_nodes = static_cast<int>(points[0] * points[1] * points[2]);
+  local.global_nodes = points[0] * points[1] * points[2];
   local.global_elements = (cell == CellType::Tetrahedron ? 6 : 1) * box.cells[0] * box.cells[1] * box.cells[2];
   local.mesh.cell = m.cell;
   local.mesh.order = m.order;

@@ -24,7 +24,12 @@ struct LocalMesh {
   std::vector<std::int64_t> global_node;  ///< per local node: its global id (ascending)
   std::vector<int> global_element;  ///< per local element: its global index (ascending)
   std::vector<int> owner;           ///< per local node: the part that owns it
-  int global_nodes = 0, global_elements = 0;
+  /// Size of the id spaces: every global node id is < global_nodes. For a piece of a
+  /// given mesh that is its node count; box_piece() numbers nodes by lattice index,
+  /// whose space has gaps for Hex20 (face and cube centres are not nodes), and
+  /// gather_nodal() then returns the lattice's layout, not box_mesh()'s numbering.
+  std::int64_t global_nodes = 0;
+  int global_elements = 0;
 
   bool owns(int local_node) const { return owner[local_node] == part; }
   int owned_nodes() const;

@@ -88,11 +88,13 @@ StaticElasticity::StaticElasticity(std::unique_ptr<DistributedMesh> piece, const
   }
   if (any_rank(!problem.empty(), dist_->comm))
     throw MeshError(problem.empty() ? std::string("static problem: another rank's piece of the mesh is invalid") : problem);
+  std::string bad_node;
   for (const auto& bc : dirichlet_)
     for (int n : bc.nodes)
-      if (n < 0 || n >= m.num_nodes())
-        throw std::invalid_argument(fmt::format(
-            "static problem: Dirichlet node {} is out of range (the piece has {} nodes)", n, m.num_nodes()));
+      if ((n < 0 || n >= m.num_nodes()) && bad_node.empty())
+        bad_node = fmt::format("static problem: Dirichlet node {} is out of range (the piece has {} nodes)", n, m.num_nodes());
+  if (any_rank(!bad_node.empty(), dist_->comm))  // decided together: the set-up below is collective
+    throw std::invalid_argument(bad_node.empty() ? std::string("static problem: a Dirichlet node is out of range on another rank") : bad_node);
   finish_setup(constrained_nodes(dirichlet_, {}), {}, Eigen::VectorXd(), body_force);
   setup_seconds_hint_ = seconds_since(t0);
 }
@@ -157,7 +159,8 @@ double StaticElasticity::gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) 
   double e = std::numeric_limits<double>::infinity();
   bool outside = false;
   try {
-    on_all_ranks_or_throw<MaterialDomainError>(options_.distributed, MPI_COMM_WORLD, "outside the material's domain",
+    on_all_ranks_or_throw<MaterialDomainError>(dist_ != nullptr, dist_ ? dist_->comm : MPI_COMM_WORLD,
+                                               "outside the material's domain",
                                                [&] { e = assembler_->gradient(material_, x_, g_full_); });
   } catch (const MaterialDomainError&) {
     outside = true;
@@ -180,7 +183,7 @@ void StaticElasticity::hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, Spa
   set_state(u);
   const auto t0 = Clock::now();
   // Distributed: this rank's share of K (its elements, over its piece); forces completed.
-  on_all_ranks_or_throw<MaterialDomainError>(options_.distributed, MPI_COMM_WORLD,
+  on_all_ranks_or_throw<MaterialDomainError>(dist_ != nullptr, dist_ ? dist_->comm : MPI_COMM_WORLD,
                                              "static problem: an element left the material's domain on some rank",
                                              [&] { assembler_->hessian(material_, x_, g_full_, K, project); });
   if (dist_) dist_->nodes.sum(g_full_);

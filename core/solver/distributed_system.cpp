@@ -96,7 +96,9 @@ double DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
   hypre_check(HYPRE_IJMatrixCreate(comm, lo, hi, lo, hi, &h.ij), "HYPRE_IJMatrixCreate");
   hypre_check(HYPRE_IJMatrixSetObjectType(h.ij, HYPRE_PARCSR), "HYPRE_IJMatrixSetObjectType");
   hypre_check(HYPRE_IJMatrixInitialize(h.ij), "HYPRE_IJMatrixInitialize");
-  // The matrix is symmetric and stored in full, so column j is row j. Only the
+  // The matrix is symmetric (a Hessian of an energy, plus mass) and stored in
+  // full, so column j is row j; GMRES is offered for its robustness, not for
+  // nonsymmetric matrices, which this transposing copy would not handle. Only the
   // values this rank's elements produced (non-zero) are sent: rows of other
   // ranks are its ghost rows, shipped by Assemble.
   std::vector<HYPRE_BigInt> cols;

@@ -220,13 +220,17 @@ MmsResult run_mms(const MmsCase& c) {
   }
   r.error_degree = err.degree;
   if (piece) r.ranks = gather_rank_stats(problem.rank_stats(), piece->comm);
-  const Eigen::VectorXd u = piece ? piece->gather_nodal(problem.displacement()) : problem.displacement();
-  if (!c.vtu.empty() && piece) err.cell_l2 = piece->gather_elemental(err.cell_l2.row(0).transpose()).transpose();
-  if (!c.vtu.empty() && (!piece || piece->rank == 0)) {
-    Eigen::MatrixXd disp = Eigen::Map<const Eigen::MatrixXd>(u.data(), 3, mesh.num_nodes());
-    Eigen::MatrixXd exact(3, mesh.num_nodes());
-    for (int i = 0; i < mesh.num_nodes(); ++i) exact.col(i) = p.ustar.value(mesh.nodes.col(i));
-    write_vtu(c.vtu, mesh, {{"displacement", disp}, {"exact_displacement", exact}}, {{"l2_error", err.cell_l2}});
+  if (!c.vtu.empty()) {
+    // Gathered to rank 0 for the one VTU only (a piece run never gathers: no rank
+    // would hold a whole-mesh field).
+    const Eigen::VectorXd u = piece ? piece->gather_nodal(problem.displacement()) : problem.displacement();
+    if (piece) err.cell_l2 = piece->gather_elemental(err.cell_l2.row(0).transpose()).transpose();
+    if (!piece || piece->rank == 0) {
+      Eigen::MatrixXd disp = Eigen::Map<const Eigen::MatrixXd>(u.data(), 3, mesh.num_nodes());
+      Eigen::MatrixXd exact(3, mesh.num_nodes());
+      for (int i = 0; i < mesh.num_nodes(); ++i) exact.col(i) = p.ustar.value(mesh.nodes.col(i));
+      write_vtu(c.vtu, mesh, {{"displacement", disp}, {"exact_displacement", exact}}, {{"l2_error", err.cell_l2}});
+    }
   }
   r.l2_error = err.l2;
   r.h1_error = err.h1;

@@ -50,7 +50,9 @@ TEST_P(BoxPieces, MatchTheWholeMesh) {
           EXPECT_EQ(owner_of.count(id), 0u) << "node " << id << " owned twice";
           owner_of[id] = p;
         }
-        if (position_of.count(id)) EXPECT_EQ(position_of[id], piece.mesh.nodes.col(n)) << "shared node differs";  // bitwise
+        if (position_of.count(id)) {
+          EXPECT_EQ(position_of[id], piece.mesh.nodes.col(n)) << "shared node differs";  // bitwise
+        }
         position_of[id] = piece.mesh.nodes.col(n);
       }
       for (int n : piece.mesh.node_set("boundary")) boundary_owned += piece.owns(n);
