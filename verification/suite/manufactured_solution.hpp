@@ -47,7 +47,7 @@ struct MmsCase {
   std::string vtu;            ///< if set, write the solution (displacement, error) to this .vtu file
   /// Distributed over the MPI ranks (StaticOptions::distributed; linear_solver unused).
   bool distributed = false;
-  DistributedSolverOptions distributed_solver;  ///< hypre Krylov method, AMG variant, rigid-body modes
+  DistributedSolverOptions distributed_solver{};  ///< hypre Krylov method, AMG variant, rigid-body modes
 };
 
 struct MmsResult {
