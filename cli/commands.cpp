@@ -239,13 +239,8 @@ int run_verify(const VerifyOptions& o) {
   if (o.convergence != "none" && o.convergence != "ci" && o.convergence != "full")
     throw UsageError(fmt::format("--convergence: unknown preset '{}' (valid: none, ci, full)", o.convergence));
   verification::Report report = verification::run_all_checks({o.convergence});
-  nlohmann::json j = report.to_json();
-  if (!o.group.empty()) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (const auto& r : j["rows"])
-      if (r["group"].get<std::string>().starts_with(o.group)) rows.push_back(r);
-    j["rows"] = rows;
-  }
+  // --group: the file holds that group's rows, measurements and summary only.
+  const nlohmann::json j = o.group.empty() ? report.to_json() : report.only(o.group).to_json();
   ensure_parent_directory(o.out);
   std::ofstream f(o.out);
   if (!f) throw std::runtime_error(fmt::format("cannot write '{}'", o.out));

@@ -53,6 +53,15 @@ nlohmann::json Report::to_json() const {
           {"measurements", measurements}};
 }
 
+Report Report::only(const std::string& prefix) const {
+  Report out;
+  for (const auto& r : rows_)
+    if (r.group.starts_with(prefix)) out.rows_.push_back(r);
+  for (const auto& m : measurements_)
+    if (m.group.starts_with(prefix)) out.measurements_.push_back(m);
+  return out;
+}
+
 std::string Report::summary_table() const {
   struct G {
     int n = 0, failed = 0;

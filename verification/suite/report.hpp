@@ -32,6 +32,9 @@ class Report {
   const std::vector<CheckRow>& rows() const { return rows_; }
   int failures() const;
   nlohmann::json to_json() const;
+  /// The rows and measurements whose group starts with `prefix` (a report of its own:
+  /// its summary counts only those).
+  Report only(const std::string& prefix) const;
   /// Short per-group table (rows, failures, worst margin) for terminals.
   std::string summary_table() const;
 

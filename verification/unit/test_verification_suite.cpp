@@ -33,5 +33,22 @@ TEST(VerificationReport, CountsFailuresAndRejectsNaN) {
   EXPECT_TRUE(j["rows"][2]["measured"].is_string());
 }
 
+// `hofem verify --group P` writes Report::only(P): that prefix's rows and
+// measurements, with a summary that counts only them.
+TEST(VerificationReport, OnlyKeepsOneGroupPrefix) {
+  Report r;
+  r.check("partition.balance", "a", 0.0, 1.0, Compare::AtMost);
+  r.check("partition.cut", "b", 2.0, 1.0, Compare::AtMost);
+  r.check("quadrature.exactness", "c", 0.0, 1.0, Compare::AtMost);
+  r.measure("partition.seconds", "t", 0.1);
+  r.measure("embedded.fig4", "t", 0.2);
+  const auto j = r.only("partition").to_json();
+  EXPECT_EQ(j["rows"].size(), 2u);
+  EXPECT_EQ(j["measurements"].size(), 1u);
+  EXPECT_EQ(j["summary"]["checks"], 2);
+  EXPECT_EQ(j["summary"]["failed"], 1);
+  EXPECT_FALSE(j["summary"]["groups"].contains("quadrature.exactness"));
+}
+
 }  // namespace
 }  // namespace hofem::verification
