@@ -1,6 +1,7 @@
 #include "assembly/distributed_dofs.hpp"
 
 #include "mesh/mesh_partition.hpp"
+#include "parallel/collectives.hpp"
 
 #include <fmt/format.h>
 
@@ -16,11 +17,7 @@ Halo node_halo(MPI_Comm comm, const LocalMesh& local) {
 
 }  // namespace
 
-double DistributedMesh::sum(double value) const {
-  double total = 0.0;
-  MPI_Allreduce(&value, &total, 1, MPI_DOUBLE, MPI_SUM, comm);
-  return total;
-}
+double DistributedMesh::sum(double value) const { return sum_over_ranks(value, comm); }
 
 namespace {
 

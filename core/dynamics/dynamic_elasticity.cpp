@@ -167,14 +167,8 @@ void DynamicElasticity::ensure_consistent_mass() {
 
 void DynamicElasticity::ensure_linear_solver() {
   if (solver_) return;
-  if (dist_) {
-    rows_ = std::make_unique<DistributedDofs>(distribute_dofs(*dist_, dofs_));
-    solver_ = make_distributed_solver(*rows_, options_.distributed_solver, mesh_, dofs_);
-  } else {
-    solver_ = make_linear_solver(options_.linear_solver);
-  }
-  solver_->set_discretization(
-      {&mesh_, &dofs_, options_.preconditioner_blocks && !dist_ ? &*options_.preconditioner_blocks : nullptr});
+  solver_ = make_problem_solver(dist_.get(), rows_, options_.linear_solver, options_.distributed_solver, mesh_, dofs_,
+                                options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
   K_ = assembler_->new_matrix();
 }
 

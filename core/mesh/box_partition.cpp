@@ -12,10 +12,20 @@ namespace {
 
 using Block = std::array<std::array<int, 2>, 3>;
 
-void bisect(const BoxSpec& box, const Block& block, int parts, int first, std::vector<Block>& out) {
+// The bisection as a tree, to find a cube's part in O(log parts): an inner node
+// sends cubes with index < cut along `axis` to `low`, the others to `high`; a
+// leaf (axis -1) is part `part`.
+struct Cut {
+  int axis = -1, cut = 0, low = -1, high = -1, part = 0;
+};
+
+int bisect(const BoxSpec& box, const Block& block, int parts, int first, std::vector<Block>& out, std::vector<Cut>& tree) {
+  const int me = static_cast<int>(tree.size());
+  tree.emplace_back();
   if (parts == 1) {
     out[first] = block;
-    return;
+    tree[me].part = first;
+    return me;
   }
   // The longest side in length; ties to the lowest axis.
   int axis = 0;
@@ -32,21 +42,29 @@ void bisect(const BoxSpec& box, const Block& block, int parts, int first, std::v
   Block low = block, high = block;
   low[axis][1] = cut;
   high[axis][0] = cut;
-  bisect(box, low, lower_parts, first, out);
-  bisect(box, high, parts - lower_parts, first + lower_parts, out);
+  const int low_node = bisect(box, low, lower_parts, first, out, tree);
+  const int high_node = bisect(box, high, parts - lower_parts, first + lower_parts, out, tree);
+  tree[me] = Cut{axis, cut, low_node, high_node, 0};
+  return me;
+}
+
+std::vector<Block> blocks_and_tree(const BoxSpec& box, int parts, std::vector<Cut>& tree) {
+  if (parts < 1) throw MeshError(fmt::format("box partition: need >= 1 parts, got {}", parts));
+  std::vector<Block> out(parts);
+  bisect(box, Block{{{0, box.cells[0]}, {0, box.cells[1]}, {0, box.cells[2]}}}, parts, 0, out, tree);
+  return out;
 }
 
 }  // namespace
 
 std::vector<Block> box_blocks(const BoxSpec& box, int parts) {
-  if (parts < 1) throw MeshError(fmt::format("box partition: need >= 1 parts, got {}", parts));
-  std::vector<Block> out(parts);
-  bisect(box, Block{{{0, box.cells[0]}, {0, box.cells[1]}, {0, box.cells[2]}}}, parts, 0, out);
-  return out;
+  std::vector<Cut> tree;
+  return blocks_and_tree(box, parts, tree);
 }
 
 LocalMesh box_piece(const BoxSpec& box, CellType cell, int order, int parts, int p) {
-  const std::vector<Block> blocks = box_blocks(box, parts);
+  std::vector<Cut> tree;
+  const std::vector<Block> blocks = blocks_and_tree(box, parts, tree);
   if (p < 0 || p >= parts) throw MeshError(fmt::format("box partition: part {} outside [0, {})", p, parts));
   const Block& mine = blocks[p];
   // The block's cubes as a box of its own: the same Kuhn split and node order
@@ -71,30 +89,29 @@ LocalMesh box_piece(const BoxSpec& box, CellType cell, int order, int parts, int
       index[i][c] = std::llround((m.nodes(c, i) - box.lower[c]) / step);
     }
   auto id_of = [&](const std::array<long long, 3>& I) { return I[0] + points[0] * (I[1] + points[1] * I[2]); };
-  // Owner: the lowest part among the cubes whose closure holds the node.
+  // Owner: the lowest part among the cubes whose closure holds the node (up to
+  // 2 per direction: a node on a cube face lies in the cubes on both sides).
   auto part_of_cube = [&](const std::array<long long, 3>& cube) {
-    for (int b = 0; b < parts; ++b) {
-      bool inside = true;
-      for (int c = 0; c < 3 && inside; ++c) inside = cube[c] >= blocks[b][c][0] && cube[c] < blocks[b][c][1];
-      if (inside) return b;  // blocks in part order: the first hit is the part
-    }
-    return parts;  // not reached: the blocks tile the box
+    int node = 0;
+    while (tree[node].axis >= 0) node = cube[tree[node].axis] < tree[node].cut ? tree[node].low : tree[node].high;
+    return tree[node].part;
   };
   auto owner_of = [&](const std::array<long long, 3>& I) {
-    std::array<std::vector<long long>, 3> cubes;
+    std::array<std::array<long long, 2>, 3> cubes{};
+    std::array<int, 3> count{};
     for (int c = 0; c < 3; ++c) {
       const long long k = I[c] / q;
-      if (I[c] % q == 0) {
-        if (k - 1 >= 0) cubes[c].push_back(k - 1);
-        if (k < box.cells[c]) cubes[c].push_back(k);
-      } else {
-        cubes[c].push_back(k);
+      if (I[c] % q != 0) {
+        cubes[c][count[c]++] = k;
+        continue;
       }
+      if (k - 1 >= 0) cubes[c][count[c]++] = k - 1;
+      if (k < box.cells[c]) cubes[c][count[c]++] = k;
     }
     int owner = parts;
-    for (long long a : cubes[0])
-      for (long long b : cubes[1])
-        for (long long d : cubes[2]) owner = std::min(owner, part_of_cube({a, b, d}));
+    for (int a = 0; a < count[0]; ++a)
+      for (int b = 0; b < count[1]; ++b)
+        for (int d = 0; d < count[2]; ++d) owner = std::min(owner, part_of_cube({cubes[0][a], cubes[1][b], cubes[2][d]}));
     return owner;
   };
   // Local nodes in ascending global id, as LocalMesh requires.

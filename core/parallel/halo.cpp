@@ -74,7 +74,8 @@ void Halo::exchange(const Eigen::VectorXd& from, Eigen::VectorXd& to, bool to_ow
   if (from.size() != static_cast<Eigen::Index>(block_) * size())
     throw std::invalid_argument(fmt::format("Halo: a vector of {} values for {} entries of {}", from.size(), size(), block_));
   const int n = neighbours();
-  std::vector<MPI_Request> requests(2 * static_cast<size_t>(n));
+  std::vector<MPI_Request>& requests = requests_;
+  requests.resize(2 * static_cast<size_t>(n));
   for (int k = 0; k < n; ++k) {
     const std::vector<int>& out = to_owner ? ghost_of_[k] : shared_with_[k];
     const std::vector<int>& in = to_owner ? shared_with_[k] : ghost_of_[k];

@@ -62,7 +62,8 @@ class Halo {
   std::vector<int> neighbour_;                 ///< ranks sharing entries with this one
   std::vector<std::vector<int>> ghost_of_;     ///< per neighbour: my ghosts it owns (in the order agreed)
   std::vector<std::vector<int>> shared_with_;  ///< per neighbour: my owned entries it ghosts (same order)
-  mutable std::vector<std::vector<double>> send_, recv_;
+  mutable std::vector<std::vector<double>> send_, recv_;  // reused: exchanges run every Newton iteration
+  mutable std::vector<MPI_Request> requests_;
   mutable long long bytes_sent_ = 0, exchanges_ = 0;
 };
 

@@ -105,14 +105,8 @@ void StaticElasticity::finish_setup(const std::vector<int>& constrained, const E
   dofs_ = DofMap(m.num_nodes(), constrained);
   assembler_ = std::make_unique<Assembler>(m, dofs_, options_.quadrature_degree);
   assembler_->set_element_rules(rules);
-  if (dist_) {
-    rows_ = std::make_unique<DistributedDofs>(distribute_dofs(*dist_, dofs_));
-    solver_ = make_distributed_solver(*rows_, options_.distributed_solver, m, dofs_);
-  } else {
-    solver_ = make_linear_solver(options_.linear_solver);
-  }
-  solver_->set_discretization(
-      {&m, &dofs_, options_.preconditioner_blocks && !dist_ ? &*options_.preconditioner_blocks : nullptr});
+  solver_ = make_problem_solver(dist_.get(), rows_, options_.linear_solver, options_.distributed_solver, m, dofs_,
+                                options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
   const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * m.order + 2;
   f_ext_ = body_force ? assembler_->body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * m.num_nodes());
   if (dist_) dist_->nodes.sum(f_ext_);  // each rank integrated its own elements

@@ -5,7 +5,6 @@
 #include "problem/static_elasticity.hpp"
 #include "scene/scene_embedding.hpp"
 
-#include "parallel/collectives.hpp"
 #include "parallel/mpi_runtime.hpp"
 
 #include <fmt/format.h>

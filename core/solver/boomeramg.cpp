@@ -153,8 +153,8 @@ void BoomerAmg::apply(HYPRE_ParCSRMatrix A, HYPRE_ParVector b, HYPRE_ParVector x
   hypre_check(HYPRE_BoomerAMGSolve(solver_, A, b, x), "HYPRE_BoomerAMGSolve");
 }
 
-Eigen::MatrixXd rigid_rotations(const Discretization& d) {
-  const Eigen::Vector3d centre = d.mesh->nodes.rowwise().mean();
+Eigen::MatrixXd rigid_rotations(const Discretization& d, const Eigen::Vector3d* given_centre) {
+  const Eigen::Vector3d centre = given_centre ? *given_centre : Eigen::Vector3d(d.mesh->nodes.rowwise().mean());
   const std::vector<int>& free = d.dofs->free_dofs();
   Eigen::MatrixXd R = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(free.size()), 3);
   for (size_t i = 0; i < free.size(); ++i) {

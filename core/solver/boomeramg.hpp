@@ -114,9 +114,11 @@ class BoomerAmgPreconditioner final : public Preconditioner {
   bool ready_ = false;
 };
 
-/// The rigid rotations (e_k x X, k = x, y, z) of the free DOFs of d, centred at the
-/// nodes' centroid: num_free x 3. Translations need no vectors: systems AMG
-/// interpolates each displacement component separately and keeps constants.
-Eigen::MatrixXd rigid_rotations(const Discretization& d);
+/// The rigid rotations (e_k x (X - centre), k = x, y, z) of the free DOFs of d:
+/// num_free x 3; centre: the nodes' centroid unless given (a distributed system
+/// passes one centre to every rank, so that the ranks' rows form global modes).
+/// Translations need no vectors: systems AMG interpolates each displacement
+/// component separately and keeps constants.
+Eigen::MatrixXd rigid_rotations(const Discretization& d, const Eigen::Vector3d* centre = nullptr);
 
 }  // namespace hofem

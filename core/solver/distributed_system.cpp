@@ -67,20 +67,17 @@ void DistributedLinearSystem::set_coordinates(const Mesh& mesh, const DofMap& do
   if (dofs.num_free() != n || dofs.num_dofs() != 3 * mesh.num_nodes())
     throw std::invalid_argument(fmt::format("DistributedLinearSystem: a DOF map of {} free DOFs for {} rows",
                                             dofs.num_free(), n));
-  // Centred at the owned DOFs' global centroid (any centre spans the same space
-  // together with the translations; centring keeps the vectors well scaled).
+  // One centre for all ranks (the owned DOFs' global centroid): each rank's rows
+  // of the same rotation then form one global vector.
   Eigen::Vector4d sums = Eigen::Vector4d::Zero();
   for (Eigen::Index i = 0; i < n; ++i)
     if (rows_.free.owned(static_cast<int>(i))) sums += mesh.nodes.col(dofs.free_dofs()[i] / 3).homogeneous();
   MPI_Allreduce(MPI_IN_PLACE, sums.data(), 4, MPI_DOUBLE, MPI_SUM, rows_.free.comm());
   const Eigen::Vector3d centre = sums.head<3>() / std::max(sums[3], 1.0);
+  const Eigen::MatrixXd local = rigid_rotations({&mesh, &dofs, nullptr}, &centre);
   modes_.resize(rows_.owned_rows, 3);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (!rows_.free.owned(static_cast<int>(i))) continue;
-    const int dof = dofs.free_dofs()[i];
-    const Eigen::Vector3d X = mesh.nodes.col(dof / 3) - centre;
-    for (int k = 0; k < 3; ++k) modes_(rows_.row[i] - rows_.first_row, k) = Eigen::Vector3d::Unit(k).cross(X)[dof % 3];
-  }
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (rows_.free.owned(static_cast<int>(i))) modes_.row(rows_.row[i] - rows_.first_row) = local.row(i);
 }
 
 double DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
@@ -241,10 +238,20 @@ void DistributedHypreSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x)
   if (!last_.converged) throw std::runtime_error(last_.message);
 }
 
-std::unique_ptr<LinearSolver> make_distributed_solver(const DistributedDofs& rows, const DistributedSolverOptions& options,
-                                                      const Mesh& mesh, const DofMap& dofs) {
-  auto solver = std::make_unique<DistributedHypreSolver>(rows, options);
-  solver->system().set_coordinates(mesh, dofs);
+std::unique_ptr<LinearSolver> make_problem_solver(const DistributedMesh* piece, std::unique_ptr<DistributedDofs>& rows,
+                                                  const std::string& serial_name,
+                                                  const DistributedSolverOptions& options, const Mesh& mesh,
+                                                  const DofMap& dofs, const std::vector<int>* blocks) {
+  std::unique_ptr<LinearSolver> solver;
+  if (piece) {
+    rows = std::make_unique<DistributedDofs>(distribute_dofs(*piece, dofs));
+    auto hypre = std::make_unique<DistributedHypreSolver>(*rows, options);
+    hypre->system().set_coordinates(mesh, dofs);
+    solver = std::move(hypre);
+  } else {
+    solver = make_linear_solver(serial_name);
+  }
+  solver->set_discretization({&mesh, &dofs, piece ? nullptr : blocks});
   return solver;
 }
 

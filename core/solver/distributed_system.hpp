@@ -124,9 +124,14 @@ class DistributedHypreSolver final : public LinearSolver {
   std::string error_;
 };
 
-/// A DistributedHypreSolver on `rows` with the rigid-body modes of the piece
-/// (mesh, dofs) set when the options ask for them.
-std::unique_ptr<LinearSolver> make_distributed_solver(const DistributedDofs& rows, const DistributedSolverOptions& options,
-                                                      const Mesh& mesh, const DofMap& dofs);
+/// The linear solver of a problem on `mesh` with `dofs`. Distributed (piece set,
+/// collective): the global rows of the piece's free DOFs are numbered into
+/// `rows` (which the solver refers to: keep it alive and unchanged while the
+/// solver lives) and hypre solves with `options`. Serial:
+/// make_linear_solver(serial_name), with `blocks` for block preconditioners.
+std::unique_ptr<LinearSolver> make_problem_solver(const DistributedMesh* piece, std::unique_ptr<DistributedDofs>& rows,
+                                                  const std::string& serial_name,
+                                                  const DistributedSolverOptions& options, const Mesh& mesh,
+                                                  const DofMap& dofs, const std::vector<int>* blocks);
 
 }  // namespace hofem
