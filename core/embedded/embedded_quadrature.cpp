@@ -39,37 +39,41 @@ void add_clipped_rule(const Tetrahedron& tet, std::span<const HalfSpace> cell, i
   }
 }
 
-TetBucketGrid::TetBucketGrid(std::span<const Tetrahedron> tets, int buckets_per_axis) {
-  if (tets.empty()) {
+std::vector<Eigen::AlignedBox3d> bounding_boxes(std::span<const Tetrahedron> tets) {
+  std::vector<Eigen::AlignedBox3d> boxes;
+  boxes.reserve(tets.size());
+  for (const Tetrahedron& t : tets) boxes.emplace_back(t.v.rowwise().minCoeff(), t.v.rowwise().maxCoeff());
+  return boxes;
+}
+
+BoxBucketGrid::BoxBucketGrid(std::vector<Eigen::AlignedBox3d> boxes, int buckets_per_axis) : boxes_(std::move(boxes)) {
+  if (boxes_.empty()) {
     lo_.setZero();
     size_.setOnes();
     buckets_.resize(1);
     return;
   }
   n_ = buckets_per_axis > 0 ? buckets_per_axis
-                            : std::max(1, static_cast<int>(std::cbrt(static_cast<double>(tets.size()))));
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = Eigen::Vector3d::Constant(-1e300);
-  for (const Tetrahedron& t : tets) {
-    tet_lo_.push_back(t.v.rowwise().minCoeff());
-    tet_hi_.push_back(t.v.rowwise().maxCoeff());
-    lo = lo.cwiseMin(tet_lo_.back());
-    hi = hi.cwiseMax(tet_hi_.back());
-  }
-  lo_ = lo;
-  size_ = (hi - lo).cwiseMax(1e-300) / n_;
+                            : std::max(1, static_cast<int>(std::cbrt(static_cast<double>(boxes_.size()))));
+  Eigen::AlignedBox3d all;
+  for (const Eigen::AlignedBox3d& b : boxes_) all.extend(b);
+  lo_ = all.min();
+  size_ = (all.max() - all.min()).cwiseMax(1e-300) / n_;
   buckets_.resize(static_cast<size_t>(n_) * n_ * n_);
-  for (size_t k = 0; k < tets.size(); ++k) {
-    const Eigen::Vector3i a = ((tet_lo_[k] - lo_).cwiseQuotient(size_)).array().floor().cast<int>().cwiseMax(0).cwiseMin(n_ - 1);
-    const Eigen::Vector3i b = ((tet_hi_[k] - lo_).cwiseQuotient(size_)).array().floor().cast<int>().cwiseMax(0).cwiseMin(n_ - 1);
+  auto bucket = [&](const Eigen::Vector3d& x) {
+    return ((x - lo_).cwiseQuotient(size_)).array().floor().cast<int>().cwiseMax(0).cwiseMin(n_ - 1).matrix().eval();
+  };
+  for (size_t k = 0; k < boxes_.size(); ++k) {
+    const Eigen::Vector3i a = bucket(boxes_[k].min()), b = bucket(boxes_[k].max());
     for (int i = a.x(); i <= b.x(); ++i)
       for (int j = a.y(); j <= b.y(); ++j)
         for (int l = a.z(); l <= b.z(); ++l) buckets_[(static_cast<size_t>(i) * n_ + j) * n_ + l].push_back(static_cast<int>(k));
   }
 }
 
-std::vector<int> TetBucketGrid::candidates(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
+std::vector<int> BoxBucketGrid::candidates(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
   std::vector<int> out;
-  if (tet_lo_.empty()) return out;
+  if (boxes_.empty()) return out;
   const Eigen::Vector3d a_real = (lo - lo_).cwiseQuotient(size_), b_real = (hi - lo_).cwiseQuotient(size_);
   if ((b_real.array() < 0.0).any() || (a_real.array() >= n_).any()) return out;
   const Eigen::Vector3i a = a_real.array().floor().cast<int>().cwiseMax(0).cwiseMin(n_ - 1);
@@ -78,13 +82,14 @@ std::vector<int> TetBucketGrid::candidates(const Eigen::Vector3d& lo, const Eige
     for (int j = a.y(); j <= b.y(); ++j)
       for (int l = a.z(); l <= b.z(); ++l)
         for (int k : buckets_[(static_cast<size_t>(i) * n_ + j) * n_ + l])
-          if ((tet_lo_[k].array() <= hi.array()).all() && (tet_hi_[k].array() >= lo.array()).all()) out.push_back(k);
+          if ((boxes_[k].min().array() <= hi.array()).all() && (boxes_[k].max().array() >= lo.array()).all())
+            out.push_back(k);
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
-PhysicalRule box_cell_rule(std::span<const Tetrahedron> tets, const TetBucketGrid& grid, const Eigen::Vector3d& lo,
+PhysicalRule box_cell_rule(std::span<const Tetrahedron> tets, const BoxBucketGrid& grid, const Eigen::Vector3d& lo,
                            const Eigen::Vector3d& hi, int degree) {
   const std::vector<HalfSpace> cell = box_half_spaces(lo, hi);
   PhysicalRule rule;

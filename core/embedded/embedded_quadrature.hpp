@@ -7,11 +7,13 @@
 // simplification of §4.4 then reduces to at most C(m+3, 3).
 //
 // A uniform bucket grid over the embedded tets' bounding boxes gives each cell
-// its candidate tets, so cells do not test every embedded tet.
+// its candidate tets, so cells do not test every embedded tet (the same grid
+// serves the embedded surface's triangles, embedded_surface_quadrature.hpp).
 #include "embedded/tet_clipping.hpp"
 #include "mesh/mesh.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <span>
 #include <vector>
@@ -32,23 +34,27 @@ std::vector<Tetrahedron> mesh_tetrahedra(const Mesh& mesh);
 /// Appends to `rule` a degree-m rule over the part of `tet` inside every half-space.
 void add_clipped_rule(const Tetrahedron& tet, std::span<const HalfSpace> cell, int degree, PhysicalRule& rule);
 
-/// Uniform grid of buckets over the tets' bounding box; each tet is listed in
-/// every bucket its bounding box overlaps.
-class TetBucketGrid {
+/// Bounding boxes of tetrahedra (for BoxBucketGrid).
+std::vector<Eigen::AlignedBox3d> bounding_boxes(std::span<const Tetrahedron> tets);
+
+/// Uniform grid of buckets over a set of boxes (the bounding boxes of embedded
+/// tets or triangles); each box is listed in every bucket it overlaps.
+class BoxBucketGrid {
  public:
-  explicit TetBucketGrid(std::span<const Tetrahedron> tets, int buckets_per_axis = 0);  ///< 0: ~cbrt(n)
-  /// Indices of the tets whose bounding boxes may overlap [lo, hi], each once, ascending.
+  explicit BoxBucketGrid(std::vector<Eigen::AlignedBox3d> boxes, int buckets_per_axis = 0);  ///< 0: ~cbrt(n)
+  /// Indices of the boxes that overlap [lo, hi], each once, ascending.
   std::vector<int> candidates(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
 
  private:
   Eigen::Vector3d lo_, size_;
   int n_ = 1;
   std::vector<std::vector<int>> buckets_;
-  std::vector<Eigen::Vector3d> tet_lo_, tet_hi_;
+  std::vector<Eigen::AlignedBox3d> boxes_;
 };
 
-/// Degree-m rule over (embedded tets ∩ box [lo, hi]), using the grid's candidates.
-PhysicalRule box_cell_rule(std::span<const Tetrahedron> tets, const TetBucketGrid& grid, const Eigen::Vector3d& lo,
+/// Degree-m rule over (embedded tets ∩ box [lo, hi]), using the grid's candidates
+/// (a grid over bounding_boxes(tets)).
+PhysicalRule box_cell_rule(std::span<const Tetrahedron> tets, const BoxBucketGrid& grid, const Eigen::Vector3d& lo,
                            const Eigen::Vector3d& hi, int degree);
 
 }  // namespace hofem

@@ -103,7 +103,7 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
   for (int e = 0; e < ne; ++e) maps.push_back(affine_cell(background, e));  // throws before any work
 
   const auto t0 = Clock::now();
-  const TetBucketGrid grid(geometry);
+  const BoxBucketGrid grid(bounding_boxes(geometry));
   out.rules.resize(ne);
   out.mass_rules.resize(ne);
   out.volume_fraction.assign(ne, 0.0);

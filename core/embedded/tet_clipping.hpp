@@ -36,6 +36,15 @@ void clip_tetrahedron(const Tetrahedron& t, const HalfSpace& h, std::vector<Tetr
 std::vector<Tetrahedron> clip_tetrahedron(const Tetrahedron& t, std::span<const HalfSpace> planes,
                                           double relative_min_volume = 1e-14);
 
+/// A convex planar polygon, vertices in order around it.
+using ConvexPolygon = std::vector<Eigen::Vector3d>;
+
+/// The part of a convex polygon inside h (one Sutherland-Hodgman pass: a vertex
+/// with n . x - d <= 0 is inside, an edge with one end strictly on each side is
+/// cut). Empty if nothing of it is inside; may be degenerate (zero area) when
+/// the polygon only touches the plane - callers drop pieces by area.
+ConvexPolygon clip_polygon(const ConvexPolygon& polygon, const HalfSpace& h);
+
 /// The 6 half-spaces of the box [lo, hi].
 std::vector<HalfSpace> box_half_spaces(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
 /// The 4 half-spaces of a (non-degenerate) tetrahedron.

@@ -115,7 +115,7 @@ double Fig4Result::max_simplified_error() const {
 
 Fig4Result fig4_study(bool octants, int degree) {
   static const std::vector<Tetrahedron> tets = cuboid_tetrahedra();
-  static const TetBucketGrid grid(tets);
+  static const BoxBucketGrid grid(bounding_boxes(tets));
   Fig4Result out;
   out.geometry = octants ? "8 octants" : "one cell";
   out.degree = degree;

@@ -76,7 +76,7 @@ TEST(EmbeddedQuadrature, CellRulesOfACutCuboidSumToItsMoments) {
   for (int i = 0; i < cuboid.num_nodes(); ++i)
     cuboid.nodes.col(i) = centre + R * ((cuboid.nodes.col(i) - Eigen::Vector3d::Constant(0.5)).cwiseProduct(extent));
   const std::vector<Tetrahedron> tets = mesh_tetrahedra(cuboid);
-  const TetBucketGrid grid(tets);
+  const BoxBucketGrid grid(bounding_boxes(tets));
   for (int m : {1, 2, 3, 5}) {
     PhysicalRule total;
     const double h = 1.0 / 3.0;
@@ -114,7 +114,7 @@ TEST(EmbeddedQuadrature, CellRulesOfACutCuboidSumToItsMoments) {
 TEST(EmbeddedQuadrature, BucketGridFindsEveryOverlappingTet) {
   const Mesh m = box_mesh(BoxSpec{{0, 0, 0}, {2, 1, 1}, {6, 3, 3}}, CellType::Tetrahedron, 1);
   const std::vector<Tetrahedron> tets = mesh_tetrahedra(m);
-  const TetBucketGrid grid(tets);
+  const BoxBucketGrid grid(bounding_boxes(tets));
   std::mt19937 gen(5);
   std::uniform_real_distribution<double> u(-0.3, 2.3);
   for (int trial = 0; trial < 200; ++trial) {
