@@ -7,6 +7,7 @@
 #include "element_checks.hpp"
 #include "fcm_conditioning_checks.hpp"
 #include "fcm_convergence_checks.hpp"
+#include "fcm_load_checks.hpp"
 #include "fcm_rigid_motion_checks.hpp"
 #include "material_checks.hpp"
 #include "partition_checks.hpp"
@@ -24,6 +25,7 @@ Report run_fast_checks() {
   add_patch_checks(report);
   add_dynamics_checks(report);
   add_embedded_quadrature_checks(report);
+  add_fcm_load_checks(report);
   add_partition_checks(report);
   return report;
 }
