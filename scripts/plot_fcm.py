@@ -253,16 +253,13 @@ def plot_fig10(report, out_dir):
 # --- Benchmarks: quadrature point reduction and FEM vs FCM per step (BM_Fcm*, BM_ElasticStep) ---
 
 def benchmark_runs(directory):
-    """Finite-cell benchmark entries from benchmarks.json (main job) or benchmarks_fcm.json."""
-    for name in ("benchmarks.json", "benchmarks_fcm.json"):
-        path = directory / name
-        if path.exists():
-            runs = [b for b in load(path).get("benchmarks", [])
-                    if b["name"].startswith(("BM_FcmQuadrature", "BM_ElasticStep"))
-                    and b.get("aggregate_name", "median") == "median" and "error_occurred" not in b]
-            if runs:
-                return runs
-    return []
+    """Finite-cell benchmark entries (medians) of the main job's benchmarks.json."""
+    path = directory / "benchmarks.json"
+    if not path.exists():
+        return []
+    return [b for b in load(path).get("benchmarks", [])
+            if b["name"].startswith(("BM_FcmQuadrature", "BM_ElasticStep"))
+            and b.get("aggregate_name", "median") == "median" and "error_occurred" not in b]
 
 
 def plot_benchmarks(report, out_dir):
@@ -270,7 +267,7 @@ def plot_benchmarks(report, out_dir):
     quad = [b for b in runs if b["name"].startswith("BM_FcmQuadrature")]
     step = [b for b in runs if b["name"].startswith("BM_ElasticStep")]
     if not quad and not step:
-        print("plot_fcm: benchmarks skipped: no BM_FcmQuadrature / BM_ElasticStep runs in benchmarks*.json")
+        print("plot_fcm: benchmarks skipped: no BM_FcmQuadrature / BM_ElasticStep runs in benchmarks.json")
         return None
     fig, (a, b) = plt.subplots(1, 2, figsize=(11, 4.2))
     labels = [q["name"].split("/")[0].replace("BM_FcmQuadrature_", "") for q in quad]
