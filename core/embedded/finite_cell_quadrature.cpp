@@ -229,7 +229,7 @@ StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& c
     }
     if (options.stabilisation == 0.0) continue;
     cells.rules[e] = with_gauss(cells.rules[e]);
-    if (cells.mass_rules[e]) cells.mass_rules[e] = with_gauss(cells.mass_rules[e]);
+    if (options.mass && cells.mass_rules[e]) cells.mass_rules[e] = with_gauss(cells.mass_rules[e]);
     out.stabilised.push_back(static_cast<int>(e));
   }
   return out;

@@ -132,7 +132,11 @@ Solution solve(const Grid& grid, bool staircase, const Mesh& surface) {
     for (int e = 0; e < background.num_elements(); ++e)
       solve_cells.rules[e] = solve_cells.mass_rules[e] = measured[e] ? nullptr : none;
   } else {
-    stabilise_finite_cells(background, solve_cells);  // §5.3 defaults: drop below 1e-4, 1e-6 Gauss points
+    // §5.3 defaults (drop below 1e-4, 1e-6 Gauss points) on the stiffness; the mass
+    // rules of a static solve carry no stiffness and stay as the loads use them.
+    FiniteCellStabilisation stabilisation;
+    stabilisation.mass = false;
+    stabilise_finite_cells(background, solve_cells, stabilisation);
   }
   // Cells that carry stiffness in the solve: the traction's points in any other
   // cell (a dropped sliver, a cell outside the staircase) go to the nearest of them.

@@ -137,6 +137,24 @@ TEST(FiniteCell, StabilisationBoundsTheCutCellStiffnessFromBelow) {
   EXPECT_GE(stabilised, 1e-6 * full * (1.0 - 1e-9));
 }
 
+// Static problems stabilise the stiffness only: their mass rules carry the loads,
+// which must integrate over the body alone (the cut rule's own object is kept).
+TEST(FiniteCell, StabilisationCanLeaveTheMassRulesAlone) {
+  const Mesh cell = box_mesh(unit_cube(1), CellType::Hexahedron, 1);
+  const Mesh geometry = box_mesh(BoxSpec{{0, 0, 0}, {0.3, 1, 1}, {1, 2, 2}}, CellType::Tetrahedron, 1);
+  for (const bool mass : {true, false}) {
+    CellQuadrature fc = finite_cell_quadrature(cell, mesh_tetrahedra(geometry), 2);
+    const auto cut_mass = fc.mass_rules[0];
+    const int cut_stiffness_points = fc.rules[0]->rule.size();
+    FiniteCellStabilisation options;
+    options.mass = mass;
+    stabilise_finite_cells(cell, fc, options);
+    EXPECT_GT(fc.rules[0]->rule.size(), cut_stiffness_points);  // the Gauss points were added
+    EXPECT_EQ(fc.mass_rules[0] == cut_mass, !mass);
+    EXPECT_NEAR(fc.mass_rules[0]->rule.weights.sum(), 8.0 * (0.3 + (mass ? 1e-6 : 0.0)), 1e-14);
+  }
+}
+
 }  // namespace
 }  // namespace hofem
 
