@@ -15,9 +15,13 @@ namespace hofem {
 
 namespace {
 
-/// A vertex within this distance of a cell's face plane counts as on it. The
+/// A vertex within this distance of a cell's face plane counts as on it, for
+/// clipping and for the rule that gives a triangle in a face to one cell. The
 /// half-spaces of cell_half_spaces are in reference units (the hex is [-1, 1]^3),
-/// so this is relative to the cell's size: rounding of the clipped vertices.
+/// so this is relative to the cell's size, far above the rounding of a vertex's
+/// reference coordinates (~1e-16: a flat face on the grid plane z = 0 of a grid
+/// with h = 1/6 came out at +2e-16, "outside", and was lost without it) and far
+/// below any real cut.
 constexpr double kOnFace = 1e-12;
 
 /// A piece of a triangle in one cell: a point set appended to `out`.
@@ -99,7 +103,7 @@ EmbeddedSurfaceRule embedded_surface_rule(const Mesh& background, const Mesh& su
       if (!(areas[t] > 0.0)) continue;
       ConvexPolygon piece = triangles[t];
       for (const HalfSpace& h : planes) {
-        piece = clip_polygon(piece, h);
+        piece = clip_polygon(piece, h, kOnFace);
         if (piece.size() < 3) break;
       }
       if (piece.size() < 3 || belongs_to_neighbour(piece, planes, normals[t])) continue;

@@ -77,15 +77,16 @@ std::vector<Tetrahedron> clip_tetrahedron(const Tetrahedron& t, std::span<const 
   return pieces;
 }
 
-ConvexPolygon clip_polygon(const ConvexPolygon& polygon, const HalfSpace& h) {
+ConvexPolygon clip_polygon(const ConvexPolygon& polygon, const HalfSpace& h, double on_plane) {
   ConvexPolygon out;
   const size_t n = polygon.size();
   for (size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d& a = polygon[i];
     const Eigen::Vector3d& b = polygon[(i + 1) % n];
     const double sa = h.signed_distance(a), sb = h.signed_distance(b);
-    if (sa <= 0.0) out.push_back(a);
-    if ((sa < 0.0 && sb > 0.0) || (sa > 0.0 && sb < 0.0)) out.push_back(a + (sa / (sa - sb)) * (b - a));
+    if (sa <= on_plane) out.push_back(a);
+    if ((sa < -on_plane && sb > on_plane) || (sa > on_plane && sb < -on_plane))
+      out.push_back(a + (sa / (sa - sb)) * (b - a));
   }
   return out;
 }

@@ -40,10 +40,12 @@ std::vector<Tetrahedron> clip_tetrahedron(const Tetrahedron& t, std::span<const 
 using ConvexPolygon = std::vector<Eigen::Vector3d>;
 
 /// The part of a convex polygon inside h (one Sutherland-Hodgman pass: a vertex
-/// with n . x - d <= 0 is inside, an edge with one end strictly on each side is
-/// cut). Empty if nothing of it is inside; may be degenerate (zero area) when
-/// the polygon only touches the plane - callers drop pieces by area.
-ConvexPolygon clip_polygon(const ConvexPolygon& polygon, const HalfSpace& h);
+/// with n . x - d <= on_plane is inside, an edge from below -on_plane to above
+/// on_plane is cut). Empty if nothing of it is inside; may be degenerate (zero
+/// area) when the polygon only touches the plane - callers drop pieces by area.
+/// on_plane > 0 keeps a polygon that lies in the plane whole whichever way its
+/// vertices' distances round (in the units of n . x - d).
+ConvexPolygon clip_polygon(const ConvexPolygon& polygon, const HalfSpace& h, double on_plane = 0.0);
 
 /// The 6 half-spaces of the box [lo, hi].
 std::vector<HalfSpace> box_half_spaces(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);

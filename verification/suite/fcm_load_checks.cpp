@@ -193,7 +193,7 @@ void add_fcm_load_checks(Report& report) {
   const Mesh surface = boundary_surface(body_mesh);
   const Mesh curved = half_ball_curved_surface(body_mesh);
   for (int order : {1, 2})
-    for (int n : {8, 16}) check_background(report, body_mesh, surface, curved, order, n);
+    for (int n : {6, 10}) check_background(report, body_mesh, surface, curved, order, n);
 }
 
 }  // namespace hofem::verification

@@ -76,6 +76,27 @@ TEST(EmbeddedSurfaceQuadrature, TriangleInACellFaceGoesToTheCellBehindIt) {
   }
 }
 
+// The same where h is not a binary fraction (1/6, 1/10): the face planes' reference
+// coordinates round to either side of +-1, and a triangle in a face must still be
+// counted once - on the background's boundary (z = 0, body above) and inside it.
+// Before the on-plane tolerance of the clip, the flat face of the Fig. 10 half ball
+// on z = 0 of the h = 1/6 grid was lost.
+TEST(EmbeddedSurfaceQuadrature, TriangleInAFaceIsCountedOnceWhateverTheRounding) {
+  for (int n : {6, 10}) {
+    const Mesh background = box_mesh(unit_cube(n), CellType::Hexahedron, 1);
+    for (double z : {0.0, 2.0 / n, 0.5}) {  // grid planes
+      const Eigen::Vector3d a(0.13, 0.07, z), b(0.71, 0.29, z), c(0.37, 0.93, z);
+      const double area = 0.5 * (b - a).cross(c - a).norm();
+      for (const bool upward : {false, true}) {
+        if (z == 0.0 && upward) continue;  // the body would lie outside the background
+        const Mesh surface = upward ? triangle(a, b, c) : triangle(a, c, b);
+        const EmbeddedSurfaceRule rule = embedded_surface_rule(background, surface, 2);
+        EXPECT_NEAR(rule.weights.sum(), area, 1e-14) << "n = " << n << ", z = " << z << (upward ? " up" : " down");
+      }
+    }
+  }
+}
+
 // Points in inactive cells (dropped slivers) move to the nearest active cell and
 // are evaluated by extrapolation: the basis still sums to one there, so the total
 // force equals ∫ t dA (1e-14: rounding of a few hundred terms).
