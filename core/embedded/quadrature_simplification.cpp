@@ -148,6 +148,88 @@ std::optional<BasicSolution> basic_feasible_point(const Eigen::MatrixXd& A, cons
   return out;
 }
 
+// Lawson & Hanson (1974), "Solving Least Squares Problems", ch. 23: the active-set
+// method for min |A w - c| over w >= 0. Its passive (positive) columns stay
+// linearly independent, so it ends with at most rank(A) = r positive weights: when
+// c lies in the cone of A's columns (it does: w0 >= 0 is a solution), a basic
+// feasible point of eq. 10, the same kind of answer as the simplex's.
+struct ActiveSetResult {
+  std::vector<int> support;
+  Eigen::VectorXd weights;
+  bool converged = false;
+};
+
+ActiveSetResult active_set_nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd& c, int max_iterations) {
+  const Eigen::Index n = A.cols();
+  std::vector<char> passive(static_cast<size_t>(n), 0);
+  std::vector<int> P;
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(n), r = c, z;
+  // A's rows are orthonormal (|A^T r| <= |r|): a gradient below this is rounding
+  // of a residual at the level of eps |c| per column summed over the N columns.
+  const double tolerance = 16.0 * std::numeric_limits<double>::epsilon() * c.norm() * std::sqrt(static_cast<double>(n));
+  auto solve_passive = [&] {  // z = argmin |A_P z - c|
+    Eigen::MatrixXd AP(A.rows(), static_cast<Eigen::Index>(P.size()));
+    for (size_t k = 0; k < P.size(); ++k) AP.col(static_cast<Eigen::Index>(k)) = A.col(P[k]);
+    z = AP.colPivHouseholderQr().solve(c);
+  };
+  ActiveSetResult out;
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
+    const Eigen::VectorXd g = A.transpose() * r;  // the negative gradient of |A w - c|^2 / 2
+    Eigen::Index best = -1;
+    double largest = tolerance;
+    for (Eigen::Index j = 0; j < n; ++j)
+      if (!passive[static_cast<size_t>(j)] && g[j] > largest) {
+        largest = g[j];
+        best = j;
+      }
+    if (best < 0) {
+      out.converged = true;
+      break;
+    }
+    passive[static_cast<size_t>(best)] = 1;
+    P.push_back(static_cast<int>(best));
+    // Inner loop: step from w towards the unconstrained solution z on P as far as
+    // w stays >= 0, drop the columns that reach zero, and solve again.
+    bool positive = false;
+    for (size_t inner = 0; inner <= P.size() && !P.empty(); ++inner) {
+      solve_passive();
+      if ((z.array() > 0.0).all()) {
+        positive = true;
+        break;
+      }
+      double alpha = 1.0;
+      size_t blocking = 0;
+      for (size_t k = 0; k < P.size(); ++k) {
+        const double zk = z[static_cast<Eigen::Index>(k)];
+        if (zk <= 0.0 && w[P[k]] / (w[P[k]] - zk) < alpha) {
+          alpha = w[P[k]] / (w[P[k]] - zk);
+          blocking = k;
+        }
+      }
+      std::vector<int> kept;
+      for (size_t k = 0; k < P.size(); ++k) {
+        double& wk = w[P[k]];
+        wk = k == blocking ? 0.0 : wk + alpha * (z[static_cast<Eigen::Index>(k)] - wk);
+        if (wk > 0.0) {
+          kept.push_back(P[k]);
+        } else {
+          wk = 0.0;
+          passive[static_cast<size_t>(P[k])] = 0;
+        }
+      }
+      P = std::move(kept);
+    }
+    if (positive)
+      for (size_t k = 0; k < P.size(); ++k) w[P[k]] = z[static_cast<Eigen::Index>(k)];
+    r = c;
+    for (const int j : P) r -= w[j] * A.col(j);
+  }
+  out.support = P;
+  out.weights.resize(static_cast<Eigen::Index>(P.size()));
+  for (size_t k = 0; k < P.size(); ++k) out.weights[static_cast<Eigen::Index>(k)] = w[P[k]];
+  return out;
+}
+
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // B w summed in long double. The moments of the input rule are sums of N terms
@@ -215,11 +297,39 @@ SimplifiedRule simplify_quadrature(const Eigen::MatrixXd& points, const Eigen::V
   const Eigen::MatrixXd Vr = right_singular_vectors(P, options.rank_tolerance, out.rank);
   const Eigen::MatrixXd A = Vr.transpose();
   const Eigen::VectorXd c = accurate_product(A, w0);
+  // The kept points and their weights (in units of `unit`) as the result.
+  auto accept = [&](const std::vector<int>& support, const Eigen::VectorXd& w, double residual, const char* method,
+                    const std::string& note) {
+    const Eigen::Index n = static_cast<Eigen::Index>(support.size());
+    out.points.resize(3, n);
+    out.weights.resize(n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      out.points.col(k) = points.col(support[static_cast<size_t>(k)]);
+      out.weights[k] = w[k] * unit;
+    }
+    out.moment_residual = residual;
+    out.simplified = true;
+    out.method = method;
+    out.message = fmt::format("kept {} of {} points (rank {}, {}){}", n, out.points_before, out.rank, method, note);
+    return out;
+  };
+
+  std::string fallback;  // why the active-set method's answer was not taken
+  if (options.method == SimplificationMethod::ActiveSet) {
+    const int iterations = options.active_set_iterations >= 0 ? options.active_set_iterations : 3 * out.rank + 50;
+    const ActiveSetResult nn = active_set_nnls(A, c, iterations);
+    const bool positive = !nn.support.empty() && (nn.weights.array() > 0.0).all();
+    const double residual = positive ? moment_residual(P, Pw0, scale, nn.support, nn.weights) : kInfinity;
+    if (nn.converged && residual <= options.max_moment_residual)
+      return accept(nn.support, nn.weights, residual, "active set", "");
+    fallback = nn.converged ? fmt::format("; active set missed the moments by {:.3e}, simplex used", residual)
+                            : fmt::format("; active set stopped after {} iterations, simplex used", iterations);
+  }
 
   std::string error;
   const std::optional<BasicSolution> basic = basic_feasible_point(A, c, error);
   if (!basic) {
-    out.message = error + "; input rule returned unchanged";
+    out.message = error + fallback + "; input rule returned unchanged";
     return out;
   }
   // GLPK's weights: the basic columns with a positive value.
@@ -256,21 +366,11 @@ SimplifiedRule simplify_quadrature(const Eigen::MatrixXd& points, const Eigen::V
     if (!refined_ok) note = " (refinement gave weights <= 0: GLPK's weights kept)";
   }
   if (!(residual <= options.max_moment_residual)) {
-    out.message = fmt::format("moment residual {:.3e} above the accepted {:.1e}; input rule returned unchanged",
-                              residual, options.max_moment_residual);
+    out.message = fmt::format("moment residual {:.3e} above the accepted {:.1e}{}; input rule returned unchanged",
+                              residual, options.max_moment_residual, fallback);
     return out;
   }
-  const Eigen::Index n = static_cast<Eigen::Index>(support.size());
-  out.points.resize(3, n);
-  out.weights.resize(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    out.points.col(k) = points.col(support[k]);
-    out.weights[k] = w[k] * unit;
-  }
-  out.moment_residual = residual;
-  out.simplified = true;
-  out.message = fmt::format("kept {} of {} points (rank {}){}", n, out.points_before, out.rank, note);
-  return out;
+  return accept(support, w, residual, "simplex", note + fallback);
 }
 
 }  // namespace hofem

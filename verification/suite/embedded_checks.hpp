@@ -7,6 +7,7 @@
 // and the 8 octants of [-1, 1]^3 (the cuboid cut by the cell planes; each cell's
 // rule is simplified in that cell's reference coordinates, and the cells summed).
 // Group "embedded.fig4".
+#include "embedded/quadrature_simplification.hpp"
 #include "report.hpp"
 
 #include <array>
@@ -17,7 +18,7 @@ namespace hofem::verification {
 
 /// One case and strength of the study, with the error of every monomial.
 struct Fig4Result {
-  std::string geometry;  ///< "one cell" or "8 octants"
+  std::string geometry;  ///< "one cell" or "8 octants", and the method: "one cell, active set"
   int degree = 0;        ///< strength m
   int basis_size = 0;    ///< M = C(m+3, 3)
   int points_before = 0, points_after = 0;  ///< summed over cells
@@ -26,6 +27,7 @@ struct Fig4Result {
   double max_outside = 0.0;       ///< largest distance of a kept point outside the cuboid, / cuboid diameter
   double seconds = 0.0;           ///< simplification time, summed over cells
   int failures = 0;               ///< cells whose simplification returned the input (N > M)
+  int fallbacks = 0;              ///< active set: cells whose answer came from the simplex fallback
   struct Monomial {
     std::array<int, 3> exponent;  ///< of the local coordinates y (each in [0.2, 0.2 + extent])
     double initial_error = 0.0;   ///< |Q - I| / I of the clipped rule (I > 0 analytic)
@@ -36,8 +38,9 @@ struct Fig4Result {
   double max_simplified_error() const;
 };
 
-/// Runs one case (octants = false: one cell) for strength m.
-Fig4Result fig4_study(bool octants, int degree);
+/// Runs one case (octants = false: one cell) for strength m with one way to the
+/// basic feasible point (quadrature_simplification.hpp).
+Fig4Result fig4_study(bool octants, int degree, SimplificationMethod method);
 
 void add_embedded_quadrature_checks(Report& report);
 

@@ -187,7 +187,7 @@ void add_fcm_convergence_checks(Report& report, const std::string& level) {
       const Grid grid = make_grid(order, n, body);
       report.measure(group, fmt::format("{} h=1/{} cut-cell rules seconds", order == 1 ? "Hex8" : "Hex20", n),
                      grid.seconds,
-                     fmt::format("clipping and LP simplification: {} -> {} stiffness points, {} mass points",
+                     fmt::format("clipping and simplification (§4.4): {} -> {} stiffness points, {} mass points",
                                  grid.cells.points, grid.cells.simplified_points, grid.cells.mass_points));
       for (bool staircase : {false, true}) solutions[{order, staircase}].push_back(solve(grid, staircase, curved));
     }

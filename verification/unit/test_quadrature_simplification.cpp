@@ -19,6 +19,19 @@ namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
+// Both ways to a basic feasible point are held to the same bounds: the active set
+// (the default; each case checks that it really was the active set that answered,
+// not its simplex fallback) and the simplex alone.
+constexpr SimplificationMethod kMethods[] = {SimplificationMethod::ActiveSet, SimplificationMethod::Simplex};
+SimplificationOptions with(SimplificationMethod method) {
+  SimplificationOptions o;
+  o.method = method;
+  return o;
+}
+const char* expected_name(SimplificationMethod method) {
+  return method == SimplificationMethod::ActiveSet ? "active set" : "simplex";
+}
+
 struct Rule {
   Eigen::MatrixXd points;
   Eigen::VectorXd weights;
@@ -102,23 +115,25 @@ bool is_subset(const SimplifiedRule& s, const Rule& r) {
 // map did: 1.4e-14 against a bound of 5e-15).
 TEST(QuadratureSimplification, TetSubdividedBoxKeepsMomentsWithAtMostMPoints) {
   const Eigen::Vector3d lo(0.1, -0.3, 0.2), hi(0.9, 0.5, 0.7);
-  for (int m : {1, 2, 3, 5}) {
-    const Rule r = tet_subdivided_box(lo, hi, 2, m);
-    const SimplifiedRule s = simplify_quadrature(r.points, r.weights, m);
-    const int M = (m + 1) * (m + 2) * (m + 3) / 6;
-    ASSERT_TRUE(s.simplified) << "m = " << m << ": " << s.message;
-    EXPECT_EQ(s.points_before, r.weights.size());
-    EXPECT_EQ(s.basis_size, M);
-    EXPECT_EQ(s.rank, M) << "points spread over a box: P has full rank";
-    EXPECT_LE(s.size(), M);
-    EXPECT_GT(s.size(), 0);
-    EXPECT_TRUE(is_subset(s, r));
-    EXPECT_GT(s.weights.minCoeff(), 0.0);
-    EXPECT_LE(s.moment_residual, 2e-15) << "m = " << m;
-    EXPECT_LE(max_monomial_difference(r, s, m, lo, hi - lo), monomial_bound(s, m)) << "m = " << m;
-    // The volume is the degree-0 moment (T_0 = 1): kept to the residual.
-    EXPECT_NEAR(s.weights.sum(), r.weights.sum(), 2e-15 * r.weights.sum());
-  }
+  for (const SimplificationMethod method : kMethods)
+    for (int m : {1, 2, 3, 5}) {
+      const Rule r = tet_subdivided_box(lo, hi, 2, m);
+      const SimplifiedRule s = simplify_quadrature(r.points, r.weights, m, with(method));
+      const int M = (m + 1) * (m + 2) * (m + 3) / 6;
+      ASSERT_TRUE(s.simplified) << "m = " << m << ": " << s.message;
+      EXPECT_EQ(s.method, expected_name(method)) << s.message;
+      EXPECT_EQ(s.points_before, r.weights.size());
+      EXPECT_EQ(s.basis_size, M);
+      EXPECT_EQ(s.rank, M) << "points spread over a box: P has full rank";
+      EXPECT_LE(s.size(), M);
+      EXPECT_GT(s.size(), 0);
+      EXPECT_TRUE(is_subset(s, r));
+      EXPECT_GT(s.weights.minCoeff(), 0.0);
+      EXPECT_LE(s.moment_residual, 2e-15) << "m = " << m;
+      EXPECT_LE(max_monomial_difference(r, s, m, lo, hi - lo), monomial_bound(s, m)) << "m = " << m;
+      // The volume is the degree-0 moment (T_0 = 1): kept to the residual.
+      EXPECT_NEAR(s.weights.sum(), r.weights.sum(), 2e-15 * r.weights.sum());
+    }
 }
 
 // A cluster of diameter ~1e-3 inside [-1, 1]^3 (a cell cut by a tiny piece of
@@ -149,14 +164,17 @@ TEST(QuadratureSimplification, TinyClusterNeedsTheBoundingBoxBasis) {
   const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(P).singularValues();
   EXPECT_LT(sv[M - 1] / sv[0], 1e-13) << "unscaled basis: numerically rank-deficient";
 
-  const SimplifiedRule s = simplify_quadrature(r.points, r.weights, m);
-  ASSERT_TRUE(s.simplified) << s.message;
-  EXPECT_EQ(s.rank, M) << "bounding-box basis: full rank";
-  EXPECT_LE(s.size(), M);
-  EXPECT_TRUE(is_subset(s, r));
-  EXPECT_GT(s.weights.minCoeff(), 0.0);
-  EXPECT_LE(s.moment_residual, 2e-15);
-  EXPECT_LE(max_monomial_difference(r, s, m, lo, Eigen::Vector3d::Constant(size)), monomial_bound(s, m));
+  for (const SimplificationMethod method : kMethods) {
+    const SimplifiedRule s = simplify_quadrature(r.points, r.weights, m, with(method));
+    ASSERT_TRUE(s.simplified) << s.message;
+    EXPECT_EQ(s.method, expected_name(method)) << s.message;
+    EXPECT_EQ(s.rank, M) << "bounding-box basis: full rank";
+    EXPECT_LE(s.size(), M);
+    EXPECT_TRUE(is_subset(s, r));
+    EXPECT_GT(s.weights.minCoeff(), 0.0);
+    EXPECT_LE(s.moment_residual, 2e-15);
+    EXPECT_LE(max_monomial_difference(r, s, m, lo, Eigen::Vector3d::Constant(size)), monomial_bound(s, m));
+  }
 }
 
 // Points on the plane z = 0.25 (a flat cut): the z-axis has zero extent, only the
@@ -181,15 +199,35 @@ TEST(QuadratureSimplification, FlatPointSetLowersTheRank) {
         r.weights[q] = 0.25 * tri.weights[i];
       }
   }
-  const SimplifiedRule s = simplify_quadrature(r.points, r.weights, m);
+  for (const SimplificationMethod method : kMethods) {
+    const SimplifiedRule s = simplify_quadrature(r.points, r.weights, m, with(method));
+    ASSERT_TRUE(s.simplified) << s.message;
+    EXPECT_EQ(s.method, expected_name(method)) << s.message;
+    EXPECT_EQ(s.rank, (m + 1) * (m + 2) / 2);
+    EXPECT_LE(s.size(), s.rank);
+    EXPECT_TRUE(is_subset(s, r));
+    EXPECT_GT(s.weights.minCoeff(), 0.0);
+    EXPECT_LE(s.moment_residual, 2e-15);
+    EXPECT_LE(max_monomial_difference(r, s, m, Eigen::Vector3d(0, 0, -0.75), Eigen::Vector3d::Ones()),
+              monomial_bound(s, m));
+  }
+}
+
+// An active set cut short (one iteration cannot reach the moments) hands over to the
+// simplex, whose answer meets the same bounds; the message says what happened.
+TEST(QuadratureSimplification, ActiveSetFallsBackToTheSimplex) {
+  const Eigen::Vector3d lo(0.1, -0.3, 0.2), hi(0.9, 0.5, 0.7);
+  const int m = 3;
+  const Rule r = tet_subdivided_box(lo, hi, 2, m);
+  SimplificationOptions o;
+  o.active_set_iterations = 1;
+  const SimplifiedRule s = simplify_quadrature(r.points, r.weights, m, o);
   ASSERT_TRUE(s.simplified) << s.message;
-  EXPECT_EQ(s.rank, (m + 1) * (m + 2) / 2);
-  EXPECT_LE(s.size(), s.rank);
-  EXPECT_TRUE(is_subset(s, r));
+  EXPECT_EQ(s.method, "simplex");
+  EXPECT_NE(s.message.find("active set stopped after 1 iterations"), std::string::npos) << s.message;
+  EXPECT_LE(s.size(), 20);
   EXPECT_GT(s.weights.minCoeff(), 0.0);
   EXPECT_LE(s.moment_residual, 2e-15);
-  EXPECT_LE(max_monomial_difference(r, s, m, Eigen::Vector3d(0, 0, -0.75), Eigen::Vector3d::Ones()),
-            monomial_bound(s, m));
 }
 
 // N <= M: nothing to gain, the input comes back unchanged and says so.
