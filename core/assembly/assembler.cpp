@@ -213,7 +213,7 @@ double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::
     constexpr int N = decltype(n)::value;
     for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
       gather(mesh_, x.data(), e, ws);
-      per_element[e] = element_hessian(mat, tabulation_of(e), weights_of(e), ws, project);
+      per_element[e] = element_hessian(mat, tabulation_of(e), weights_of(e), ws, project && !mat.constant_tangent());
       for (int i = 0; i < ws.nodes(); ++i) g.segment<3>(3 * mesh_.elements(i, e)) += ws.g.template segment<3>(3 * i);
       const int* map = pattern_->element_map(e);
       for (int r = 0; r < bd; ++r)

@@ -57,6 +57,11 @@ class Material {
     if (dPdF) *dPdF = stress_derivative(F);
     return psi;
   }
+  /// Whether dP/dF is the same positive semi-definite matrix at every F (linear
+  /// elasticity): the energy is then quadratic in the displacement, one linear
+  /// solve is the static solution, and projecting dP/dF onto the PSD cone changes
+  /// nothing (so assembly skips it).
+  virtual bool constant_tangent() const { return false; }
   /// Whether the material needs a polar decomposition / SVD of F (corotated does).
   virtual bool needs_polar_decomposition() const { return false; }
   const LameParameters& lame() const { return lame_; }

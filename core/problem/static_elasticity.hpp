@@ -126,6 +126,8 @@ class StaticElasticity final : public NonlinearProblem {
                     const VectorField& body_force);
   /// The tangent predictor from load `from` to `to` at state u (converged at `from`).
   Eigen::VectorXd predict(const Eigen::VectorXd& u, double from, double to);
+  /// The step of a constant-tangent (quadratic) problem from u to the equilibrium at load `to`.
+  Eigen::VectorXd linear_step(const Eigen::VectorXd& u, double to);
   const Mesh& mesh_;  ///< the given mesh (the piece, for the piece constructor)
   std::unique_ptr<DistributedMesh> dist_;  ///< distributed: this rank's piece (mesh() is its mesh)
   std::unique_ptr<DistributedDofs> rows_;  ///< distributed: global rows of the piece's free DOFs
@@ -138,6 +140,9 @@ class StaticElasticity final : public NonlinearProblem {
   Eigen::VectorXd f_ext_;     ///< consistent body-force vector at full load (all DOFs)
   Eigen::VectorXd u_dirichlet_;  ///< prescribed displacement at full load (all DOFs, zero elsewhere)
   Eigen::VectorXd u_full_, x_, g_full_;
+  /// The matrix of linear_step(), kept: a P3 Hessian's arrays are ~1e8 bytes, and
+  /// allocating them again costs as much as assembling the values.
+  SparseMatrix K_;
   double load_ = 1.0;
   double step_force_ = 0.0;  ///< |dg/dload| * dload of the current load step (force scale)
   double assembly_seconds_ = 0.0;

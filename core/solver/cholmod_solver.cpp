@@ -6,7 +6,7 @@
 
 namespace hofem {
 
-CholmodSolver::CholmodSolver() {
+CholmodSolver::CholmodSolver(bool serial_solves) : serial_solves_(serial_solves) {
   cholmod_l_start(&common_);
   // Failures are reported to the caller (factorize() returns false); CHOLMOD's
   // own printing of "not positive definite" warnings would only be noise.
@@ -15,6 +15,7 @@ CholmodSolver::CholmodSolver() {
 
 CholmodSolver::~CholmodSolver() {
   if (factor_) cholmod_l_free_factor(&factor_, &common_);
+  if (solve_factor_) cholmod_l_free_factor(&solve_factor_, &common_);
   for (cholmod_dense** d : {&X_, &Y_, &E_})
     if (*d) cholmod_l_free_dense(d, &common_);
   cholmod_l_finish(&common_);
@@ -67,6 +68,13 @@ bool CholmodSolver::factorize(const SparseMatrix& A) {
     for (size_t j = 0; j < factor_->n; ++j)
       if (!(Lx[Lp[j]] > 0.0)) return false;
   }
+  if (serial_solves_) {
+    if (solve_factor_) cholmod_l_free_factor(&solve_factor_, &common_);
+    solve_factor_ = cholmod_l_copy_factor(factor_, &common_);
+    // Simplicial, numeric LL^T, packed, monotonic: the solves walk columns, no BLAS.
+    if (!solve_factor_ || !cholmod_l_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, solve_factor_, &common_))
+      throw std::runtime_error(fmt::format("CHOLMOD change_factor failed (status {})", common_.status));
+  }
   return true;
 }
 
@@ -84,7 +92,7 @@ void CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   // solve, or again when the size changes): no allocation per solve, which
   // matters where the solve runs inside every preconditioner application (the
   // coarse level of pmg).
-  if (!cholmod_l_solve2(CHOLMOD_A, factor_, &B, nullptr, &X_, nullptr, &Y_, &E_, &common_))
+  if (!cholmod_l_solve2(CHOLMOD_A, serial_solves_ ? solve_factor_ : factor_, &B, nullptr, &X_, nullptr, &Y_, &E_, &common_))
     throw std::runtime_error(fmt::format("CHOLMOD solve failed (status {})", common_.status));
   x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(X_->x), b.size());
 }

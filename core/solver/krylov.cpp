@@ -10,6 +10,12 @@ namespace hofem {
 
 namespace {
 
+Eigen::VectorXd apply(const LinearOperator& A, const Eigen::VectorXd& x) {
+  Eigen::VectorXd y;
+  A.multiply(x, y);
+  return y;
+}
+
 double safe_norm(const Eigen::VectorXd& b) {
   const double n = b.norm();
   return n > 0.0 ? n : 1.0;
@@ -18,9 +24,9 @@ double safe_norm(const Eigen::VectorXd& b) {
 // Every method ends the same way: the relative residual it reports is the true
 // one, ||b - A x|| / ||b||, not the recurrence's (which drifts from it in
 // floating point), and convergence means no breakdown and that residual <= rtol.
-void finish(KrylovResult& res, const SparseMatrix& A, const Eigen::VectorXd& b, const Eigen::VectorXd& x, double bn,
+void finish(KrylovResult& res, const LinearOperator& A, const Eigen::VectorXd& b, const Eigen::VectorXd& x, double bn,
             double rtol) {
-  res.relative_residual = (b - A * x).norm() / bn;
+  res.relative_residual = (b - apply(A, x)).norm() / bn;
   res.converged = res.breakdown.empty() && res.relative_residual <= rtol;
 }
 
@@ -35,9 +41,9 @@ constexpr int kMaxResidualReplacements = 5;
 
 /// True once b - A x meets rtol; else r = b - A x (the caller restarts from it), or
 /// gives up (true) after kMaxResidualReplacements replacements.
-bool confirm_or_replace(const SparseMatrix& A, const Eigen::VectorXd& b, const Eigen::VectorXd& x, double bn,
+bool confirm_or_replace(const LinearOperator& A, const Eigen::VectorXd& b, const Eigen::VectorXd& x, double bn,
                         double rtol, Eigen::VectorXd& r, KrylovResult& res, int& replacements) {
-  r = b - A * x;
+  r = b - apply(A, x);
   const double true_relative = r.norm() / bn;
   res.history.back() = true_relative;
   return true_relative <= rtol || ++replacements > kMaxResidualReplacements;
@@ -46,12 +52,12 @@ bool confirm_or_replace(const SparseMatrix& A, const Eigen::VectorXd& b, const E
 }  // namespace
 
 // Thesis Algorithm 4 (preconditioned CG).
-KrylovResult conjugate_gradient(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+KrylovResult conjugate_gradient(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                 const Preconditioner& M, const KrylovOptions& opt) {
   KrylovResult res;
   if (x.size() != b.size()) x.setZero(b.size());
   const double bn = safe_norm(b);
-  Eigen::VectorXd r = b - A * x, z, Ap;
+  Eigen::VectorXd r = b - apply(A, x), z, Ap;
   M.apply(r, z);
   Eigen::VectorXd p = z;
   double rz = r.dot(z);
@@ -64,7 +70,7 @@ KrylovResult conjugate_gradient(const SparseMatrix& A, const Eigen::VectorXd& b,
       p = z;
       rz = r.dot(z);
     }
-    Ap.noalias() = A * p;
+    A.multiply(p, Ap);
     const double pAp = p.dot(Ap);
     if (!(pAp > 0.0)) {  // negative (or zero) curvature: A is not positive definite
       res.breakdown = fmt::format("CG: p^T A p = {:.3e} <= 0 at iteration {} (matrix not positive definite)", pAp, k);
@@ -88,14 +94,14 @@ KrylovResult conjugate_gradient(const SparseMatrix& A, const Eigen::VectorXd& b,
 
 // Thesis Algorithm 5 (preconditioned conjugate residuals): minimises the residual
 // in the A-norm of the preconditioned system; needs A symmetric, not definite.
-KrylovResult conjugate_residual(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+KrylovResult conjugate_residual(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                 const Preconditioner& M, const KrylovOptions& opt) {
   KrylovResult res;
   if (x.size() != b.size()) x.setZero(b.size());
   const double bn = safe_norm(b);
-  Eigen::VectorXd r = b - A * x, z, q;
+  Eigen::VectorXd r = b - apply(A, x), z, q;
   M.apply(r, z);  // z = M^-1 r
-  Eigen::VectorXd Az = A * z, p = z, Ap = Az;
+  Eigen::VectorXd Az = apply(A, z), p = z, Ap = Az;
   double zAz = z.dot(Az);
   res.history.push_back(r.norm() / bn);
   int replacements = 0;
@@ -103,7 +109,7 @@ KrylovResult conjugate_residual(const SparseMatrix& A, const Eigen::VectorXd& b,
     if (res.history.back() <= opt.rtol) {
       if (confirm_or_replace(A, b, x, bn, opt.rtol, r, res, replacements)) break;
       M.apply(r, z);  // restart the directions from the true residual
-      Az.noalias() = A * z;
+      A.multiply(z, Az);
       p = z;
       Ap = Az;
       zAz = z.dot(Az);
@@ -118,7 +124,7 @@ KrylovResult conjugate_residual(const SparseMatrix& A, const Eigen::VectorXd& b,
     x.noalias() += alpha * p;
     r.noalias() -= alpha * Ap;
     z.noalias() -= alpha * q;
-    Az.noalias() = A * z;
+    A.multiply(z, Az);
     const double zAz_new = z.dot(Az);
     const double beta = zAz_new / zAz;
     p = z + beta * p;
@@ -135,13 +141,13 @@ KrylovResult conjugate_residual(const SparseMatrix& A, const Eigen::VectorXd& b,
 // Paige & Saunders 2011, Table 2.1). M must be SPD; A symmetric, possibly
 // indefinite. The residual norm is the method's own estimate (in the M^-1 norm
 // scaled back), checked against the true residual at the end.
-KrylovResult minres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
+KrylovResult minres(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
                     const KrylovOptions& opt) {
   KrylovResult res;
   const Eigen::Index n = b.size();
   if (x.size() != n) x.setZero(n);
   const double bn = safe_norm(b);
-  Eigen::VectorXd r1 = b - A * x, y, r2, v, w = Eigen::VectorXd::Zero(n), w1 = w, w2 = w;
+  Eigen::VectorXd r1 = b - apply(A, x), y, r2, v, w = Eigen::VectorXd::Zero(n), w1 = w, w2 = w;
   M.apply(r1, y);
   double beta1 = r1.dot(y);
   res.history.push_back(r1.norm() / bn);
@@ -164,10 +170,10 @@ KrylovResult minres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::Vect
   for (int k = 0; k < opt.max_iterations; ++k) {
     // The estimate is exact only for M = I: once it passes, confirm with the true
     // residual (one extra product per iteration from then on) and go on if needed.
-    if (phibar * scale <= opt.rtol && (b - A * x).norm() / bn <= opt.rtol) break;
+    if (phibar * scale <= opt.rtol && (b - apply(A, x)).norm() / bn <= opt.rtol) break;
     const double s = 1.0 / beta;
     v = s * y;
-    Av.noalias() = A * v;
+    A.multiply(v, Av);
     if (k > 0) Av -= (beta / oldb) * r1;
     const double alfa = v.dot(Av);
     Av -= (alfa / beta) * r2;
@@ -205,7 +211,7 @@ KrylovResult minres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::Vect
 
 // Thesis Algorithm 6, restarted GMRES(m) with right preconditioning (so the
 // monitored residual is the true one), modified Gram–Schmidt and Givens rotations.
-KrylovResult gmres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
+KrylovResult gmres(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
                    const KrylovOptions& opt) {
   KrylovResult res;
   const Eigen::Index n = b.size();
@@ -214,7 +220,7 @@ KrylovResult gmres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::Vecto
   const int m = std::max(1, opt.restart);
   Eigen::MatrixXd V(n, m + 1), H = Eigen::MatrixXd::Zero(m + 1, m);
   Eigen::VectorXd cs(m), sn(m), g(m + 1), z, w;
-  Eigen::VectorXd r = b - A * x;
+  Eigen::VectorXd r = b - apply(A, x);
   double beta = r.norm();
   res.history.push_back(beta / bn);
   while (res.iterations < opt.max_iterations && res.history.back() > opt.rtol) {
@@ -224,7 +230,7 @@ KrylovResult gmres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::Vecto
     int j = 0;
     for (; j < m && res.iterations < opt.max_iterations; ++j) {
       M.apply(V.col(j), z);
-      w.noalias() = A * z;
+      A.multiply(z, w);
       for (int i = 0; i <= j; ++i) {
         H(i, j) = w.dot(V.col(i));
         w.noalias() -= H(i, j) * V.col(i);
@@ -259,7 +265,7 @@ KrylovResult gmres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::Vecto
     const Eigen::VectorXd y = H.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
     M.apply(V.leftCols(j) * y, z);
     x.noalias() += z;
-    r = b - A * x;
+    r = b - apply(A, x);
     beta = r.norm();
     res.history.back() = beta / bn;  // true residual at the restart
     if (!res.breakdown.empty()) break;
@@ -282,16 +288,29 @@ void KrylovSolver::analyze(const SparseMatrix&) { ++analyses_; }
 bool KrylovSolver::factorize(const SparseMatrix& A) {
   ++factorizations_;
   A_ = &A;
+  use_block_ = A.rows() % 3 == 0 && A.rows() == A.cols() && A.isCompressed();
+  if (use_block_) {
+    const std::uint64_t pattern = pattern_fingerprint(A);
+    if (pattern != block_pattern_ || block_.rows() != A.rows()) {
+      block_ = BlockSparseMatrix<double>(A);
+      block_pattern_ = pattern;
+    } else {
+      block_.set_values(A);
+    }
+  }
   return M_->setup(A);
 }
 
 void KrylovSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   if (!A_) throw std::logic_error("KrylovSolver::solve before factorize");
   x.setZero(b.size());
-  if (method_ == "cg") last_ = conjugate_gradient(*A_, b, x, *M_, options_);
-  else if (method_ == "cr") last_ = conjugate_residual(*A_, b, x, *M_, options_);
-  else if (method_ == "minres") last_ = minres(*A_, b, x, *M_, options_);
-  else last_ = gmres(*A_, b, x, *M_, options_);
+  const SparseMatrixOperator sparse(*A_);
+  const BlockOperator<double> block(block_);
+  const LinearOperator& A = use_block_ ? static_cast<const LinearOperator&>(block) : sparse;
+  if (method_ == "cg") last_ = conjugate_gradient(A, b, x, *M_, options_);
+  else if (method_ == "cr") last_ = conjugate_residual(A, b, x, *M_, options_);
+  else if (method_ == "minres") last_ = minres(A, b, x, *M_, options_);
+  else last_ = gmres(A, b, x, *M_, options_);
   if (!last_.converged)
     throw std::runtime_error(fmt::format("{}: no convergence ({} iterations, relative residual {:.3e}){}{}", name_,
                                          last_.iterations, last_.relative_residual, last_.breakdown.empty() ? "" : ": ",

@@ -5,6 +5,7 @@
 // caps its iterations, records the residual history, and reports a breakdown
 // instead of returning garbage (CG meeting p^T A p <= 0 on an indefinite matrix).
 #include "assembly/sparse_matrix.hpp"
+#include "solver/linear_operator.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/preconditioner.hpp"
 
@@ -29,14 +30,33 @@ struct KrylovResult {
   std::string breakdown;        ///< non-empty if the method broke down (and why)
 };
 
-KrylovResult conjugate_gradient(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+/// The methods on any operator (the assembled matrix, or its 3x3 block copy).
+KrylovResult conjugate_gradient(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                 const Preconditioner& M, const KrylovOptions& opt);
-KrylovResult conjugate_residual(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+KrylovResult conjugate_residual(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                 const Preconditioner& M, const KrylovOptions& opt);
-KrylovResult minres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
+KrylovResult minres(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
                     const KrylovOptions& opt);
-KrylovResult gmres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
+KrylovResult gmres(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x, const Preconditioner& M,
                    const KrylovOptions& opt);
+
+/// The same on an assembled matrix.
+inline KrylovResult conjugate_gradient(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                       const Preconditioner& M, const KrylovOptions& opt) {
+  return conjugate_gradient(SparseMatrixOperator(A), b, x, M, opt);
+}
+inline KrylovResult conjugate_residual(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                       const Preconditioner& M, const KrylovOptions& opt) {
+  return conjugate_residual(SparseMatrixOperator(A), b, x, M, opt);
+}
+inline KrylovResult minres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                           const Preconditioner& M, const KrylovOptions& opt) {
+  return minres(SparseMatrixOperator(A), b, x, M, opt);
+}
+inline KrylovResult gmres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                          const Preconditioner& M, const KrylovOptions& opt) {
+  return gmres(SparseMatrixOperator(A), b, x, M, opt);
+}
 
 /// A LinearSolver running one Krylov method ("cg", "cr", "minres", "gmres") with
 /// one preconditioner; factorize() sets the preconditioner up, solve() iterates
@@ -61,6 +81,11 @@ class KrylovSolver final : public LinearSolver {
   std::unique_ptr<Preconditioner> M_;
   KrylovOptions options_;
   const SparseMatrix* A_ = nullptr;
+  /// A's 3x3 block copy, the operator of the iterations when A's size is a
+  /// multiple of 3 (structure rebuilt only when A's pattern changes).
+  BlockSparseMatrix<double> block_;
+  std::uint64_t block_pattern_ = 0;
+  bool use_block_ = false;
   KrylovResult last_;
 };
 

@@ -105,10 +105,13 @@ TEST(Krylov, IndefiniteMatrixBreaksCgButNotCrMinresGmres) {
   const KrylovResult cg = conjugate_gradient(A, b, x, *M, opt);
   EXPECT_FALSE(cg.converged);
   EXPECT_NE(cg.breakdown.find("not positive definite"), std::string::npos) << cg.breakdown;
-  for (auto* method : {&conjugate_residual, &minres, &gmres}) {
+  using Method = KrylovResult (*)(const SparseMatrix&, const Eigen::VectorXd&, Eigen::VectorXd&,
+                                  const Preconditioner&, const KrylovOptions&);
+  const Method cr_method = &conjugate_residual, minres_method = &minres, gmres_method = &gmres;
+  for (const Method method : {cr_method, minres_method, gmres_method}) {
     x.setZero(b.size());
     const KrylovResult r = (*method)(A, b, x, *M, opt);
-    EXPECT_TRUE(r.converged) << "method " << (method == &conjugate_residual ? "cr" : method == &minres ? "minres" : "gmres") << " " << r.breakdown << " residual " << r.relative_residual << " iterations " << r.iterations;
+    EXPECT_TRUE(r.converged) << "method " << (method == cr_method ? "cr" : method == minres_method ? "minres" : "gmres") << " " << r.breakdown << " residual " << r.relative_residual << " iterations " << r.iterations;
     EXPECT_LE((b - A * x).norm() / b.norm(), opt.rtol);
   }
   // Jacobi needs a positive diagonal: refused with a reason, not applied.
