@@ -151,6 +151,7 @@ void register_newton_sweep() {
           if (ew && is_direct(solver)) continue;  // Eisenstat-Walker changes nothing for a direct solver
           NewtonCase c;
           c.mms.problem = "neohookean";
+          c.mms.linear_solver = "cholmod";  // MmsProblem's options at Newton rtol 1e-10, not auto's
           c.mms.order = order;
           c.mms.n = cubes_for_level("mms-neohookean", CellType::Tetrahedron, order, level);
           c.level = level;

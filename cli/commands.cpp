@@ -218,6 +218,8 @@ int run_mms(const MmsOptions& o) {
                                      {"perturbed", o.perturbed}, {"h", r.h}, {"cells", r.cells}, {"nodes", r.nodes},
                                      {"dofs", r.dofs}, {"l2_error", r.l2_error}, {"h1_error", r.h1_error},
                                      {"newton_iterations", r.newton_iterations}, {"converged", r.converged},
+                                     {"linear_solver", r.linear_solver}, {"linear_solver_reason", r.linear_solver_reason},
+                                     {"linear_iterations", r.linear_iterations}, {"newton_rtol", r.newton_rtol},
                                      {"newton_residuals", r.newton_residuals},
                                      {"quadrature_degree", r.quadrature_degree}, {"error_quadrature_degree", r.error_degree},
                                      {"setup_seconds", r.setup_seconds}, {"assembly_seconds", r.assembly_seconds},
@@ -228,9 +230,10 @@ int run_mms(const MmsOptions& o) {
                             .dump());
   } else {
     fmt::print("{} {} order {} n={}{}: {} cells, {} DOFs\n  L2 error {:.6e}   H1 error {:.6e}\n  Newton {} ({})\n"
+               "  solver {} ({}), residual tolerance {:.1e}, {} linear iterations\n"
                "  setup {:.3f} s, assembly {:.3f} s, solve {:.3f} s, total {:.3f} s\n",
                o.problem, name(cell), o.order, o.n, o.perturbed ? " perturbed" : "", r.cells, r.dofs, r.l2_error, r.h1_error,
-               r.newton_iterations, r.message, r.setup_seconds, r.assembly_seconds, r.solve_seconds, r.total_seconds);
+               r.newton_iterations, r.message, r.linear_solver, r.linear_solver_reason, r.newton_rtol, r.linear_iterations, r.setup_seconds, r.assembly_seconds, r.solve_seconds, r.total_seconds);
   }
   return r.converged ? 0 : 1;
 }

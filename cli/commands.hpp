@@ -46,7 +46,7 @@ struct MmsOptions {
   int n = 4;
   std::string cell = "tet";
   bool perturbed = false;
-  std::string solver = "cholmod";
+  std::string solver = "auto";
   bool json = false;
   std::string vtu;
   bool distributed = false;  ///< over the MPI ranks (run under mpirun -np K); rank 0 prints

@@ -300,6 +300,62 @@ def print_mms_table(report):
             prev = (n, h, dofs, l2, h1)
 
 
+def plot_time_to_error(reports):
+    """reports/time_to_error.json (BM_TimeToError): work-precision plot, total
+    time to solution vs L2 error per problem and order, one line per solver,
+    and the table of the targets (medians of this run)."""
+    path = reports / "time_to_error.json"
+    if not path.exists():
+        return
+    med = bench_medians(load(path))
+    series = {}
+    for name, (t, unit, b) in med.items():
+        if not name.startswith("BM_TimeToError/") or b.get("error_occurred"):
+            continue
+        _, problem, order, n, solver = name.split("/")[:5]
+        label = f"{problem} P{order[1:]} {solver}" + (f" ({b['label'].split('|')[1]})" if solver == "auto" else "")
+        series.setdefault((problem, int(order[1:]), solver, label), []).append(
+            (b["total_s"], b["l2_error"], int(n[1:]), b))
+    if not series:
+        return
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    colours = {1: "tab:green", 2: "tab:blue", 3: "tab:red"}
+    for (problem, order, solver, label), pts in sorted(series.items()):
+        ax = axes[0 if problem == "linear" else 1]
+        pts.sort(key=lambda p: p[2])
+        ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-" if solver == "auto" else "s--",
+                  color=colours.get(order, "black"), label=label, alpha=1.0 if solver == "auto" else 0.6)
+        for t, e, n, _ in pts:
+            ax.annotate(f"n={n}", (t, e), textcoords="offset points", xytext=(4, 3), fontsize=7)
+    for ax, title in zip(axes, ("linear elasticity (one solve)", "Neo-Hookean (Newton)")):
+        ax.set_xlabel("time to solution [s] (DOF map, pattern, load, assembly, set-up, solve; median of 3)")
+        ax.set_ylabel("L2 error against u*")
+        ax.set_title(f"work-precision, manufactured cube: {title}", fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(reports / "time_to_error.png", dpi=110)
+    plt.close(fig)
+    print("\n## Time to error (BM_TimeToError medians, 2 cores)\n")
+    print("| case | solver used | unknowns | total s | setup / assembly / solve s | iterations (linear / Newton) "
+          "| L2 error | reference L2 | diff | peak MB |")
+    print("|---|---|---:|---:|---|---|---:|---:|---:|---:|")
+    for (problem, order, solver, label), pts in sorted(series.items()):
+        for t, e, n, b in sorted(pts, key=lambda p: p[2]):
+            print(f"| {problem} P{order} n={n} {solver} | {b['label'].split('|')[1]} | {b['unknowns']:.0f} | {t:.3f} "
+                  f"| {b['setup_s']:.3f} / {b['assembly_s']:.3f} / {b['solve_s']:.3f} "
+                  f"| {b['linear_iterations']:.0f} / {b['newton_iterations']:.0f} | {e:.4e} "
+                  f"| {b['reference_l2_error']:.4e} | {b['l2_vs_reference']:.1e} | {b['peak_mb']:.0f} |")
+    targets = (("linear", 3, 12, 1.8), ("linear", 2, 16, 0.9), ("neohookean", 3, 8, 1.3), ("linear", 3, 16, 4.5))
+    print("\n| target | total s (auto) | limit s | verdict |\n|---|---:|---:|---|")
+    for problem, order, n, limit in targets:
+        hit = [p for (pr, o, sv, _), pts in series.items() if pr == problem and o == order and sv == "auto"
+               for p in pts if p[2] == n]
+        if hit:
+            t = hit[0][0]
+            print(f"| {problem} P{order} n={n} | {t:.3f} | {limit} | {'met' if t <= limit else 'NOT met'} |")
+
+
 def main():
     reports = Path(sys.argv[1] if len(sys.argv) > 1 else "reports")
     report = load(reports / "verification.json")
@@ -313,6 +369,7 @@ def main():
     plot_assembly(bench, reports / "benchmark_assembly.png")
     summary(report, bench)
     print_mms_table(report)
+    plot_time_to_error(reports)  # BM_TimeToError
     plot_sweep(reports)  # solver_benchmarks.json and solver_histories.json, if the sweep ran
     print(f"\nplots: {', '.join(sorted(p.name for p in reports.glob('*.png')))}")
 

@@ -203,8 +203,8 @@ double Assembler::gradient(const Material& mat, const Eigen::VectorXd& x, Eigen:
 double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g, SparseMatrix& K,
                           bool project) const {
   check_size(x, mesh_);
-  if (K.nonZeros() != pattern_->nonzeros()) K = new_matrix();
-  std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
+  if (K.nonZeros() != pattern_->nonzeros() || K.rows() != pattern_->zero_matrix().rows()) pattern_->shape(K);
+  else pattern_->zero_values(K);
   g.setZero(3 * mesh_.num_nodes());
   double* values = K.valuePtr();
   const int bd = pattern_->block_dim();

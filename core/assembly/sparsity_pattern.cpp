@@ -118,4 +118,27 @@ SparsityPattern::SparsityPattern(const Mesh& mesh, const DofMap& dofs) {
   colours_ = colour_elements(mesh);
 }
 
+void SparsityPattern::shape(SparseMatrix& K) const {
+  const Eigen::Index n = pattern_.rows();
+  const std::int64_t nnz = pattern_.nonZeros();
+  K.resize(n, pattern_.cols());
+  K.resizeNonZeros(nnz);  // uninitialised arrays: the loops below touch them first
+  std::copy(pattern_.outerIndexPtr(), pattern_.outerIndexPtr() + n + 1, K.outerIndexPtr());
+  const auto* inner = pattern_.innerIndexPtr();
+  auto* k_inner = K.innerIndexPtr();
+  double* values = K.valuePtr();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t q = 0; q < nnz; ++q) {
+    k_inner[q] = inner[q];
+    values[q] = 0.0;
+  }
+}
+
+void SparsityPattern::zero_values(SparseMatrix& K) const {
+  double* values = K.valuePtr();
+  const std::int64_t nnz = K.nonZeros();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t q = 0; q < nnz; ++q) values[q] = 0.0;
+}
+
 }  // namespace hofem

@@ -21,6 +21,12 @@ class SparsityPattern {
 
   /// A matrix with this pattern and all values zero (compressed).
   const SparseMatrix& zero_matrix() const { return pattern_; }
+  /// Gives K this pattern with all values zero, like K = zero_matrix() but
+  /// filling the index and value arrays on every thread: the first touch of a
+  /// ~100 MB array is page faults, which a serial copy takes one at a time.
+  void shape(SparseMatrix& K) const;
+  /// Sets every value of a matrix of this pattern to zero (in parallel).
+  void zero_values(SparseMatrix& K) const;
   /// Positions of element e's block entries in the value array, row-major over
   /// (3 i + a, 3 j + b) of the element block: size (3n)^2.
   const int* element_map(int e) const { return map_.data() + static_cast<size_t>(e) * block_size_; }

@@ -28,15 +28,29 @@ BasisTabulation tabulate(const ReferenceBasis& basis, const QuadratureRule& rule
   return t;
 }
 
-const BasisTabulation& cached_tabulation(CellType cell, int order, int quadrature_degree) {
+namespace {
+std::mutex& tabulation_mutex() {
   static std::mutex mutex;
+  return mutex;
+}
+std::map<std::tuple<int, int, int>, std::unique_ptr<BasisTabulation>>& tabulation_cache() {
   static std::map<std::tuple<int, int, int>, std::unique_ptr<BasisTabulation>> cache;
+  return cache;
+}
+}  // namespace
+
+const BasisTabulation& cached_tabulation(CellType cell, int order, int quadrature_degree) {
   const ReferenceBasis& basis = lagrange_basis(cell, order);
   const QuadratureRule& rule = quadrature_rule(cell, quadrature_degree);
-  std::lock_guard<std::mutex> lock(mutex);
-  auto& slot = cache[{static_cast<int>(cell), order, quadrature_degree}];
+  std::lock_guard<std::mutex> lock(tabulation_mutex());
+  auto& slot = tabulation_cache()[{static_cast<int>(cell), order, quadrature_degree}];
   if (!slot) slot = std::make_unique<BasisTabulation>(tabulate(basis, rule));
   return *slot;
+}
+
+void clear_tabulation_cache() {
+  std::lock_guard<std::mutex> lock(tabulation_mutex());
+  tabulation_cache().clear();
 }
 
 ElementQuadrature make_element_quadrature(CellType cell, int order, Eigen::MatrixXd points, Eigen::VectorXd weights) {

@@ -37,4 +37,8 @@ ElementQuadrature make_element_quadrature(CellType cell, int order, Eigen::Matri
 /// built on first use, then shared (thread-safe; the reference stays valid).
 const BasisTabulation& cached_tabulation(CellType cell, int order, int quadrature_degree);
 
+/// Drops every cached tabulation, invalidating the references handed out: only
+/// for timing a run from a cold start (benchmarks), when nothing refers to one.
+void clear_tabulation_cache();
+
 }  // namespace hofem

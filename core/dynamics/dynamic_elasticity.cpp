@@ -167,7 +167,12 @@ void DynamicElasticity::ensure_consistent_mass() {
 
 void DynamicElasticity::ensure_linear_solver() {
   if (solver_) return;
-  solver_ = make_problem_solver(dist_.get(), rows_, options_.linear_solver, options_.distributed_solver, mesh_, dofs_,
+  const SolverChoice choice = dist_ ? SolverChoice{"hypre", "distributed"}
+                                    : resolve_linear_solver(options_.linear_solver,
+                                                            {dofs_.num_free(), mesh_.order, !rules_.empty()});
+  stats_.linear_solver = choice.solver;
+  stats_.linear_solver_reason = choice.reason;
+  solver_ = make_problem_solver(dist_.get(), rows_, choice.solver, options_.distributed_solver, mesh_, dofs_,
                                 options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
   K_ = assembler_->new_matrix();
 }

@@ -23,6 +23,7 @@
 #include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/newton.hpp"
+#include "solver/solver_choice.hpp"
 
 #include <Eigen/Core>
 
@@ -54,7 +55,9 @@ struct DynamicsOptions {
   /// Elements given blocks by block preconditioners ("schwarz"): finite cells'
   /// schwarz_block_elements(); unset: every element.
   std::optional<std::vector<int>> preconditioner_blocks;
-  std::string linear_solver = "cholmod";
+  /// A make_linear_solver() name, or "auto" (solver/solver_choice.hpp); the one
+  /// used is DynamicsStats::linear_solver.
+  std::string linear_solver = "auto";
   /// Distributed over the ranks of MPI_COMM_WORLD (issue 7; implicit Euler
   /// without stiffness damping so far): each rank keeps its piece of the mesh
   /// (recursive coordinate bisection; its elements with their owned and ghost
@@ -80,6 +83,8 @@ struct Energies {
 
 /// What was built and how often things were evaluated, over the whole run.
 struct DynamicsStats {
+  std::string linear_solver;         ///< implicit integrators: the solver used ("auto" resolved)
+  std::string linear_solver_reason;  ///< why ("given" when named)
   std::string mass;              ///< "lumped (row-sum)", "lumped (HRZ)" or "consistent"
   int mass_matrices_built = 0;   ///< sparse consistent mass matrices
   int mass_factorizations = 0;   ///< Cholesky of the consistent mass (explicit + consistent only)

@@ -105,7 +105,10 @@ void StaticElasticity::finish_setup(const std::vector<int>& constrained, const E
   dofs_ = DofMap(m.num_nodes(), constrained);
   assembler_ = std::make_unique<Assembler>(m, dofs_, options_.quadrature_degree);
   assembler_->set_element_rules(rules);
-  solver_ = make_problem_solver(dist_.get(), rows_, options_.linear_solver, options_.distributed_solver, m, dofs_,
+  solver_choice_ = dist_ ? SolverChoice{"hypre", "distributed"}
+                         : resolve_linear_solver(options_.linear_solver,
+                                                 {dofs_.num_free(), m.order, !rules.empty()});
+  solver_ = make_problem_solver(dist_.get(), rows_, solver_choice_.solver, options_.distributed_solver, m, dofs_,
                                 options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
   const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * m.order + 2;
   f_ext_ = body_force ? assembler_->body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * m.num_nodes());
@@ -288,6 +291,8 @@ StaticReport StaticElasticity::solve() {
   report.solve_seconds = std::max(0.0, seconds_since(t0) - assembly_seconds_);
   report.factorizations = solver_->factorizations();
   report.symbolic_analyses = solver_->analyses();
+  report.linear_solver = solver_choice_.solver;
+  report.linear_solver_reason = solver_choice_.reason;
   return report;
 }
 

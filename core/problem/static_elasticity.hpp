@@ -13,6 +13,7 @@
 #include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/newton.hpp"
+#include "solver/solver_choice.hpp"
 
 #include <Eigen/Core>
 
@@ -34,7 +35,9 @@ struct DirichletCondition {
 struct StaticOptions {
   int quadrature_degree = -1;  ///< stiffness terms; < 0: default for order and material
   int load_degree = -1;        ///< body-force integration; < 0: 2p + 2
-  std::string linear_solver = "cholmod";
+  /// A make_linear_solver() name, or "auto": the fastest for this system
+  /// (solver/solver_choice.hpp), recorded in StaticReport::linear_solver.
+  std::string linear_solver = "auto";
   NewtonOptions newton;
   /// Finite cell method: per-element stiffness and mass/load rules (finite_cell_quadrature's
   /// element_rules()); nodes they leave without stiffness are fixed (zero displacement).
@@ -76,6 +79,8 @@ struct StaticReport {
   double setup_seconds = 0.0;     ///< pattern, tabulation, load vector
   int factorizations = 0;
   int symbolic_analyses = 0;
+  std::string linear_solver;         ///< the solver used ("auto" resolved; "hypre" when distributed)
+  std::string linear_solver_reason;  ///< why ("given" when named by the caller)
   std::string message;
 };
 
@@ -136,6 +141,7 @@ class StaticElasticity final : public NonlinearProblem {
   StaticOptions options_;
   DofMap dofs_;
   std::unique_ptr<Assembler> assembler_;
+  SolverChoice solver_choice_;  ///< options_.linear_solver resolved
   std::unique_ptr<LinearSolver> solver_;
   Eigen::VectorXd f_ext_;     ///< consistent body-force vector at full load (all DOFs)
   Eigen::VectorXd u_dirichlet_;  ///< prescribed displacement at full load (all DOFs, zero elsewhere)

@@ -13,7 +13,7 @@
 //   "integrator": "implicit-euler" | ... | "static",
 //   "dt": 0.01, "duration": 1.0,                    (not for "static")
 //   "mass": "lumped" | "consistent", "lumping": "row-sum" | "hrz",          (optional)
-//   "solver": {"linear": "cholmod", "newton_rtol": 1e-8, "newton_max_iterations": 50,
+//   "solver": {"linear": "auto", "newton_rtol": 1e-8, "newton_max_iterations": 50,
 //              "eisenstat_walker": false},                                (optional)
 //   "gravity": [0, 0, -9.81],                                             (optional)
 //   "damping": {"alpha": 0, "beta": 0},                                   (optional)

@@ -244,7 +244,11 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
   if (root.has("solver")) {
     const Field sv = root.at("solver");
     sv.keys({"linear", "newton_rtol", "newton_max_iterations", "eisenstat_walker"});
-    if (sv.has("linear")) d.linear_solver = sv.at("linear").choice(linear_solver_names());
+    if (sv.has("linear")) {
+      std::vector<std::string> names = linear_solver_names();
+      names.insert(names.begin(), "auto");
+      d.linear_solver = sv.at("linear").choice(names);
+    }
     if (sv.has("newton_rtol")) d.newton.rtol = sv.at("newton_rtol").number(0.0, 1.0, true, true);
     if (sv.has("newton_max_iterations")) d.newton.max_iterations = sv.at("newton_max_iterations").integer(1, 10000);
     if (sv.has("eisenstat_walker")) d.newton.eisenstat_walker = sv.at("eisenstat_walker").boolean();

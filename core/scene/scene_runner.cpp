@@ -82,7 +82,9 @@ void progress_bar(double fraction, double t, bool done) {
 }
 
 json stats_json(const DynamicsStats& st) {
-  return json{{"mass", st.mass},
+  return json{{"linear_solver", st.linear_solver},
+              {"linear_solver_reason", st.linear_solver_reason},
+              {"mass", st.mass},
               {"mass_matrices_built", st.mass_matrices_built},
               {"mass_factorizations", st.mass_factorizations},
               {"gradient_evaluations", st.gradient_evaluations},
@@ -175,7 +177,9 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     const Eigen::VectorXd volumes = elemental(piece, problem.assembler().element_volumes());
     const Eigen::VectorXd density = writer ? energy_density(energies, volumes) : Eigen::VectorXd();
     if (options.write_frames && writer) write_frame(out_dir, 0, mesh, u, Eigen::VectorXd(), density, emb, frames, 0.0);
-    st["built"] = {{"mass", "none (static)"},
+    st["built"] = {{"linear_solver", r.linear_solver},
+                   {"linear_solver_reason", r.linear_solver_reason},
+                   {"mass", "none (static)"},
                    {"mass_matrices_built", 0},
                    {"hessian_assemblies", r.newton_iterations},
                    {"symbolic_analyses", r.symbolic_analyses},

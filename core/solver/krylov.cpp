@@ -298,7 +298,7 @@ bool KrylovSolver::factorize(const SparseMatrix& A) {
       block_.set_values(A);
     }
   }
-  return M_->setup(A);
+  return use_block_ ? M_->setup(A, block_) : M_->setup(A);
 }
 
 void KrylovSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {

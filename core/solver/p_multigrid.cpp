@@ -28,7 +28,13 @@ PMultigridPreconditioner::~PMultigridPreconditioner() = default;
 
 int PMultigridPreconditioner::coarse_analyses() const { return coarse_direct_ ? coarse_direct_->analyses() : 0; }
 
-bool PMultigridPreconditioner::setup(const SparseMatrix& A) {
+bool PMultigridPreconditioner::setup(const SparseMatrix& A) { return check(A) && prepare(A, nullptr); }
+
+bool PMultigridPreconditioner::setup(const SparseMatrix& A, const BlockSparseMatrix<double>& blocks) {
+  return check(A) && prepare(A, &blocks);
+}
+
+bool PMultigridPreconditioner::check(const SparseMatrix& A) {
   if (!discretization_.valid()) {
     error_ = "pmg: needs the mesh and DOF map (set_discretization) before setup";
     return false;
@@ -44,13 +50,13 @@ bool PMultigridPreconditioner::setup(const SparseMatrix& A) {
                          A.isCompressed(), discretization_.dofs->num_free());
     return false;
   }
-  return prepare(A);
+  return true;
 }
 
 // Hierarchy once per discretization, block structures and Galerkin patterns once
 // per fine pattern, values (and the smoothers' scaling and eigenvalue bounds) every
 // time.
-bool PMultigridPreconditioner::prepare(const SparseMatrix& A) {
+bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseMatrix<double>* blocks) {
   const DofMap& dofs = *discretization_.dofs;
   if (mesh_for_ != discretization_.mesh || dofs_for_ != &dofs) {
     const Mesh& mesh = *discretization_.mesh;
@@ -72,22 +78,26 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A) {
     levels_.resize(static_cast<size_t>(hierarchy_->num_levels() - 1));
     galerkin_.assign(levels_.size(), BlockGalerkin{});
   }
+  // The fine level's operator: the caller's block copy, or a copy of our own.
+  fine_blocks_ = blocks;
   const std::uint64_t hash = pattern_fingerprint(A);
   if (hash != pattern_hash_) {
-    levels_[0].exact = BlockSparseMatrix<double>(A);
+    levels_[0].exact = blocks ? BlockSparseMatrix<double>() : BlockSparseMatrix<double>(A);
     for (size_t l = 0; l < levels_.size(); ++l) {
-      BlockSparseMatrix<double> next = galerkin_[l].analyze(levels_[l].exact, hierarchy_->transfer(static_cast<int>(l)));
+      BlockSparseMatrix<double> next = galerkin_[l].analyze(level_operator(l), hierarchy_->transfer(static_cast<int>(l)));
       (l + 1 < levels_.size() ? levels_[l + 1].exact : coarse_) = std::move(next);
     }
     pattern_hash_ = hash;
-  } else {
-    levels_[0].exact.set_values(A);
+  } else if (!blocks) {
+    if (levels_[0].exact.rows() != A.rows()) levels_[0].exact = BlockSparseMatrix<double>(A);  // had the caller's
+    else levels_[0].exact.set_values(A);
   }
   for (size_t l = 0; l < levels_.size(); ++l) {
-    if (l > 0) galerkin_[l - 1].compute(levels_[l - 1].exact, hierarchy_->transfer(static_cast<int>(l) - 1), levels_[l].exact);
+    if (l > 0) galerkin_[l - 1].compute(level_operator(l - 1), hierarchy_->transfer(static_cast<int>(l) - 1), levels_[l].exact);
     if (!set_level_values(levels_[l], l)) return false;
   }
-  galerkin_.back().compute(levels_.back().exact, hierarchy_->transfer(static_cast<int>(levels_.size()) - 1), coarse_);
+  galerkin_.back().compute(level_operator(levels_.size() - 1), hierarchy_->transfer(static_cast<int>(levels_.size()) - 1),
+                           coarse_);
 
   // The order-1 level: factorised when small, one AMG V-cycle when large.
   coarse_x_.setZero(coarse_.rows());
@@ -113,7 +123,7 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A) {
 // Single-precision copy, D_b^-1 for every node (from the diagonal blocks, SPD when
 // A is), the Chebyshev bound, work vectors.
 bool PMultigridPreconditioner::set_level_values(Level& level, std::size_t index) {
-  level.smooth = BlockSparseMatrix<float>(level.exact);
+  level.smooth = BlockSparseMatrix<float>(level_operator(index));
   const Eigen::Index nb = level.smooth.block_rows();
   level.inverse_diagonal.resize(static_cast<size_t>(nb));
   for (Eigen::Index b = 0; b < nb; ++b) {

@@ -64,6 +64,8 @@ class PMultigridPreconditioner final : public Preconditioner {
   ~PMultigridPreconditioner() override;
   std::string_view name() const override { return "pmg"; }
   bool setup(const SparseMatrix& A) override;
+  /// Uses `blocks` (A's block copy, alive while applied) as the fine level's operator.
+  bool setup(const SparseMatrix& A, const BlockSparseMatrix<double>& blocks) override;
   void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const override;
 
   const PMultigridOptions& options() const { return options_; }
@@ -88,8 +90,13 @@ class PMultigridPreconditioner final : public Preconditioner {
     double lambda_max = 0.0;
     mutable Eigen::VectorXd res, d, d_next, b_coarse, x_coarse;  ///< work vectors of apply()
   };
-  bool prepare(const SparseMatrix& A);
+  bool check(const SparseMatrix& A);
+  bool prepare(const SparseMatrix& A, const BlockSparseMatrix<double>* blocks);
   bool set_level_values(Level& level, std::size_t index);
+  /// Level l's operator: the caller's block copy for the fine level when given.
+  const BlockSparseMatrix<double>& level_operator(std::size_t l) const {
+    return l == 0 && fine_blocks_ ? *fine_blocks_ : levels_[l].exact;
+  }
   void estimate_lambda_max(Level& level) const;
   void chebyshev(const Level& level, Eigen::VectorXd& z, bool final_residual) const;
   void vcycle(std::size_t l, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
@@ -99,6 +106,7 @@ class PMultigridPreconditioner final : public Preconditioner {
   const Mesh* mesh_for_ = nullptr;
   const DofMap* dofs_for_ = nullptr;
   std::uint64_t pattern_hash_ = 0;
+  const BlockSparseMatrix<double>* fine_blocks_ = nullptr;  ///< setup(A, blocks)'s blocks
   std::unique_ptr<PHierarchy> hierarchy_;
   std::vector<BlockGalerkin> galerkin_;
   std::vector<Level> levels_;  ///< all but the order-1 level

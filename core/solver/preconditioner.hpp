@@ -3,6 +3,7 @@
 // Each is set up once per matrix (values) and applied every iteration; all are
 // symmetric positive definite when A is SPD, which CG, CR and MINRES need.
 #include "assembly/sparse_matrix.hpp"
+#include "solver/block_sparse_matrix.hpp"
 #include "solver/discretization.hpp"
 
 #include <Eigen/Core>
@@ -21,6 +22,13 @@ class Preconditioner {
   /// Builds M from A (A symmetric, stored in full). Returns false if it cannot
   /// (e.g. a non-positive diagonal for Jacobi), with the reason in last_error().
   virtual bool setup(const SparseMatrix& A) = 0;
+  /// The same, given A's 3x3 block copy as well (the Krylov solver's operator),
+  /// which a preconditioner working on blocks may use instead of converting A
+  /// again; it must stay alive and unchanged while M is applied. Default: setup(A).
+  virtual bool setup(const SparseMatrix& A, const BlockSparseMatrix<double>& blocks) {
+    (void)blocks;
+    return setup(A);
+  }
   virtual void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const = 0;
   /// Mesh and DOF map of the systems to come (before setup). Mesh-aware
   /// preconditioners need it and fail setup() without it; others ignore it.

@@ -43,8 +43,14 @@ struct MmsCase {
   int order = 1;
   int n = 4;                  ///< cubes per side
   bool perturbed = false;     ///< random interior-vertex perturbation (non-uniform mesh)
-  std::string linear_solver = "cholmod";
+  /// A make_linear_solver() name, or "auto": the fastest solver for the system
+  /// (solver/solver_choice.hpp) and, when that is iterative, a tolerance tied to
+  /// the expected discretisation error (mms_algebraic_tolerance).
+  std::string linear_solver = "auto";
   std::string vtu;            ///< if set, write the solution (displacement, error) to this .vtu file
+  /// > 0: Newton's residual tolerance and the linear one (iterative solvers)
+  /// instead of the defaults (1e-10, or mms_algebraic_tolerance for "auto").
+  double algebraic_rtol = 0.0;
   /// Distributed over the MPI ranks (StaticOptions::distributed; linear_solver unused).
   bool distributed = false;
   DistributedSolverOptions distributed_solver{};  ///< hypre Krylov method, AMG variant, rigid-body modes
@@ -55,7 +61,11 @@ struct MmsResult {
   double h = 0.0;
   double l2_error = 0.0, h1_error = 0.0;
   int newton_iterations = 0;
+  int linear_iterations = 0;
   bool converged = false;
+  std::string linear_solver;         ///< the solver used ("auto" resolved)
+  std::string linear_solver_reason;  ///< why
+  double newton_rtol = 0.0;          ///< the residual tolerance the solve ran to
   double setup_seconds = 0.0, assembly_seconds = 0.0, solve_seconds = 0.0, total_seconds = 0.0;
   int quadrature_degree = 0, error_degree = 0;
   std::vector<double> newton_residuals;  ///< |g| before each Newton step, all load steps
@@ -98,6 +108,19 @@ struct MmsErrors {
 /// L2 and H1-seminorm errors of a nodal displacement u (3 * num_nodes) against
 /// u*, integrated over the isoparametric map with a rule of degree >= p + 3.
 MmsErrors mms_errors(const Mesh& mesh, const ManufacturedDisplacement& ustar, const Eigen::VectorXd& u);
+
+/// Residual tolerance (Newton's |g| <= rtol * force scale, which a linear problem
+/// meets in its one linear solve) that keeps the algebraic error far below the
+/// discretisation error of order p on cubes of side h: 0.01 (h / L)^(p + 1), L = 1
+/// the cube's side, within [1e-10, 1e-6]. Measured (L2 error against CHOLMOD's on
+/// the same mesh, CG + pmg): the relative change of the L2 error is ~100x the
+/// residual tolerance relative to (h / L)^(p + 1) -- P3 n = 12 (h^4 = 4.8e-5): rtol
+/// 1e-6 moves it 8.6e-5, 1e-5 moves it 1.2e-3; P2 n = 16 (h^3 = 2.4e-4): 1e-5
+/// moves it 5.2e-4, 1e-4 moves it 5.5e-3 -- so 0.01 h^(p+1) keeps it near 1e-4,
+/// 100x inside the 1 % the solver switch may cost. The measured error constants
+/// of u* (L2 error / h^(p+1) = 0.13-0.4) are what make (h / L)^(p + 1) the right
+/// scale here; a problem of unknown error keeps Newton's own tolerance.
+double mms_algebraic_tolerance(double h, int order);
 
 MmsResult run_mms(const MmsCase& c);
 

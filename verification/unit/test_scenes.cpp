@@ -68,7 +68,7 @@ TEST(Scenes, InvalidScenesNameTheFileAndTheKey) {
       {with("\"motion\": \"fixed\"", "\"motion\": {\"rotate\": {\"point\": [0,0,0], \"axis\": [0,0,0], \"omega\": 1}}"),
        "t.json: boundary[0].motion.rotate.axis must be a non-zero vector"},
       {with("\"boundary\"", "\"solver\": {\"linear\": \"magic\"}, \"boundary\""),
-       "t.json: solver.linear = 'magic' is not one of: cholmod,"},
+       "t.json: solver.linear = 'magic' is not one of: auto, cholmod,"},
       {with("\"boundary\"", "\"floor\": {\"height\": 0}, \"boundary\""), "t.json: key 'floor.stiffness' is missing"},
       {with("\"boundary\"", "\"gravity\": [0, 0], \"boundary\""), "t.json: gravity must be an array of 3 numbers"},
       {with("\"boundary\"", "\"output\": {\"every\": 0}, \"boundary\""), "t.json: output.every = 0 is out of range"},

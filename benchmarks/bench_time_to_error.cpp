@@ -1,0 +1,130 @@
+// Time to an accurate answer (BM_TimeToError): the manufactured-solution cube of
+// `hofem mms` (verification/suite/manufactured_solution.hpp) solved from scratch
+// per repetition, for element order x mesh size x linear solver. What a user of
+// `hofem mms` waits for is timed: DOF map, sparsity pattern, load vector,
+// Hessian assembly, solver set-up and solve (StaticElasticity's constructor and
+// solve()); the mesh generation and the error integration are not. Each
+// repetition builds a fresh problem and clears the basis tabulation cache, so
+// no pattern, tabulation, transfer or symbolic analysis carries over.
+//
+// Counters: total_s and its phases (setup_s: DOF map, pattern, load vector;
+// assembly_s: Hessians, gradients, energies; solve_s: solver set-up and
+// solves), l2_error beside reference_l2_error (the same mesh solved by CHOLMOD,
+// or above 100k unknowns by the same iterative solver at rtol 1e-12, as the
+// verification study does) and their relative difference l2_vs_reference,
+// linear and Newton iterations, peak_mb (resident memory above the start),
+// unknowns. The label names the solver actually used ("auto" resolved). The
+// work-precision plot of reports/ (scripts/plot_reports.py) reads the medians.
+#include "basis/basis_tabulation.hpp"
+#include "bench_common.hpp"
+#include "manufactured_solution.hpp"
+
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <tuple>
+
+namespace hofem::bench {
+namespace {
+
+struct TimeToErrorCase {
+  std::string problem;  ///< "linear" or "neohookean"
+  int order = 2;
+  int n = 4;
+  std::string solver;   ///< "auto" or a make_linear_solver() name
+};
+
+verification::MmsCase mms_case(const TimeToErrorCase& c) {
+  verification::MmsCase m;
+  m.problem = c.problem;
+  m.order = c.order;
+  m.n = c.n;
+  m.linear_solver = c.solver;
+  return m;
+}
+
+// The L2 error of the same mesh solved to the reference accuracy (computed
+// once per mesh, outside the timing).
+double reference_l2_error(const TimeToErrorCase& c, long unknowns, const std::string& iterative_solver) {
+  static std::map<std::tuple<std::string, int, int>, double> cache;
+  const auto key = std::make_tuple(c.problem, c.order, c.n);
+  if (auto it = cache.find(key); it != cache.end()) return it->second;
+  verification::MmsCase ref = mms_case(c);
+  ref.linear_solver = "cholmod";
+  if (unknowns > 100000 && iterative_solver != "cholmod") {
+    ref.linear_solver = iterative_solver;
+    ref.algebraic_rtol = 1e-12;
+  }
+  const verification::MmsResult r = verification::run_mms(ref);
+  return cache[key] = r.converged ? r.l2_error : std::nan("");
+}
+
+void BM_TimeToError(benchmark::State& state, const TimeToErrorCase& c) {
+  double total = 0.0, l2 = 0.0;
+  StaticReport report;
+  long unknowns = 0;
+  double peak = 0.0;
+  for (auto _ : state) {
+    clear_tabulation_cache();
+    const verification::MmsProblem p(mms_case(c));  // mesh, u*, body force: not timed
+    PeakMemory memory;
+    const auto t0 = Clock::now();
+    StaticElasticity problem(p.mesh, *p.material, p.dirichlet, p.body_force, p.options);
+    report = problem.solve();
+    total = seconds_since(t0);
+    peak = memory.extra_mb();
+    state.SetIterationTime(total);
+    if (!report.converged) {
+      state.SkipWithError(("did not converge: " + report.message).c_str());
+      return;
+    }
+    unknowns = static_cast<long>(problem.dofs().num_free());
+    l2 = verification::mms_errors(p.mesh, p.ustar, problem.displacement()).l2;
+  }
+  const double reference = reference_l2_error(c, unknowns, report.linear_solver);
+  state.counters["total_s"] = total;
+  state.counters["setup_s"] = report.setup_seconds;
+  state.counters["assembly_s"] = report.assembly_seconds;
+  state.counters["solve_s"] = report.solve_seconds;
+  state.counters["l2_error"] = l2;
+  state.counters["reference_l2_error"] = reference;
+  state.counters["l2_vs_reference"] = std::abs(l2 / reference - 1.0);
+  state.counters["linear_iterations"] = report.linear_iterations;
+  state.counters["newton_iterations"] = report.newton_iterations;
+  state.counters["peak_mb"] = peak;
+  state.counters["unknowns"] = static_cast<double>(unknowns);
+  state.counters["order"] = c.order;
+  state.counters["n"] = c.n;
+  state.SetLabel(fmt::format("{}|{}", c.problem, report.linear_solver));
+}
+
+// The cases: the four targets (linear P3 n = 12, P2 n = 16, P3 n = 16,
+// Neo-Hookean P3 n = 8) inside error sequences per order, each with the default
+// solver ("auto") and with CHOLMOD (the previous default) where a direct solve
+// takes under ~10 s. Three repetitions, one solve each, medians reported.
+const bool registered = [] {
+  std::vector<TimeToErrorCase> cases;
+  for (int n : {4, 8, 16}) cases.push_back({"linear", 1, n, "auto"});
+  for (int n : {24}) cases.push_back({"linear", 1, n, "auto"});
+  for (int n : {4, 8, 12, 16}) cases.push_back({"linear", 2, n, "auto"});
+  for (int n : {4, 6, 8, 12, 16}) cases.push_back({"linear", 3, n, "auto"});
+  for (int n : {4, 6, 8}) cases.push_back({"neohookean", 3, n, "auto"});
+  for (int n : {8, 16}) cases.push_back({"linear", 2, n, "cholmod"});
+  for (int n : {6, 8, 12}) cases.push_back({"linear", 3, n, "cholmod"});
+  for (int n : {8}) cases.push_back({"neohookean", 3, n, "cholmod"});
+  for (const TimeToErrorCase& c : cases)
+    benchmark::RegisterBenchmark(fmt::format("BM_TimeToError/{}/p{}/n{}/{}", c.problem, c.order, c.n, c.solver).c_str(),
+                                 [c](benchmark::State& s) { BM_TimeToError(s, c); })
+        ->UseManualTime()
+        ->Iterations(1)
+        ->Repetitions(3)
+        ->ReportAggregatesOnly(true)
+        ->Unit(benchmark::kSecond);
+  return true;
+}();
+
+}  // namespace
+}  // namespace hofem::bench

@@ -1,0 +1,29 @@
+#include "solver/solver_choice.hpp"
+
+#include <fmt/format.h>
+
+namespace hofem {
+
+namespace {
+// Order 1: CHOLMOD up to here, CG + BoomerAMG above (the crossover measured in the header).
+constexpr Eigen::Index kOrderOneDirectLimit = 30000;
+}  // namespace
+
+SolverChoice choose_linear_solver(const SystemTraits& t) {
+  if (t.embedded)
+    return {"cholmod", fmt::format("finite cells ({} unknowns): direct, robust to small cut fractions", t.free_dofs)};
+  if (t.order >= 2)
+    return {"cg+pmg", fmt::format("order {} ({} unknowns): p-multigrid, iterations independent of the mesh", t.order,
+                                  t.free_dofs)};
+  if (t.free_dofs <= kOrderOneDirectLimit)
+    return {"cholmod", fmt::format("order 1, {} <= {} unknowns: direct is faster than AMG's set-up", t.free_dofs,
+                                   kOrderOneDirectLimit)};
+  return {"cg+amg", fmt::format("order 1, {} > {} unknowns: algebraic multigrid", t.free_dofs, kOrderOneDirectLimit)};
+}
+
+SolverChoice resolve_linear_solver(const std::string& name, const SystemTraits& traits) {
+  if (name == "auto") return choose_linear_solver(traits);
+  return {name, "given"};
+}
+
+}  // namespace hofem

@@ -1,0 +1,42 @@
+#pragma once
+// The linear solver "auto" stands for: the fastest one measured on this kind of
+// system. The rules and the measurements behind them (2 cores, the
+// manufactured-solution cube of `hofem mms`, assembly + set-up + solve; the full
+// tables are in DEVELOPERS.md's solver section and reports/time_to_error.json):
+//
+//  - order >= 2, conforming mesh: CG + p-multigrid. It beat CHOLMOD at every size
+//    run, from P3 n = 2 (0.00 vs 0.01 s) to P3 n = 12 (1.6 vs 8.0 s), with
+//    iterations flat in n (10-13 at rtol 1e-10), and is SPD for every Hessian
+//    Newton hands it (Newton projects an indefinite one, as for any CG).
+//  - order 1: no coarser p level. CHOLMOD below 30,000 free unknowns (P1 n = 16,
+//    14k unknowns: 0.37 s direct vs 0.46 s CG + BoomerAMG, whose set-up costs
+//    ~0.3 s at any size), CG + BoomerAMG above (P1 n = 24, 45k: 1.34 vs 1.12 s).
+//  - finite cells (embedded): CHOLMOD. Cut cells with small volume fractions make
+//    the system ill-conditioned in ways the smoothers do not see, and the
+//    finite-cell studies' sizes (<= 60k unknowns) factorise in seconds.
+//  - distributed runs do not ask: they always solve on hypre.
+#include <Eigen/Core>
+
+#include <string>
+
+namespace hofem {
+
+/// What the choice depends on.
+struct SystemTraits {
+  Eigen::Index free_dofs = 0;
+  int order = 1;
+  bool embedded = false;  ///< finite-cell (cut-cell) element rules
+};
+
+struct SolverChoice {
+  std::string solver;  ///< a name make_linear_solver() accepts
+  std::string reason;  ///< one line, for logs and reports
+};
+
+/// The rules above.
+SolverChoice choose_linear_solver(const SystemTraits& traits);
+
+/// `name` itself, or the choice for `traits` when name is "auto".
+SolverChoice resolve_linear_solver(const std::string& name, const SystemTraits& traits);
+
+}  // namespace hofem
