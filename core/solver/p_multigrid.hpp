@@ -10,7 +10,7 @@
 //   prolong      z += P z_c                            (line 9)
 //   post-smooth  z += S^T (r - A z)                    (line 10)
 //
-// and the order-1 level is solved by CHOLMOD when small, by one BoomerAMG V-cycle
+// and the order-1 level is solved by CHOLMOD when tiny, by one BoomerAMG V-cycle
 // otherwise (direct_coarse_limit), so set-up time and memory grow linearly with
 // the mesh. Coarse operators are Galerkin products P^T A P (solver/block_galerkin),
 // exact coarse discretisations of whatever matrix is given (a Newton Hessian too).
@@ -53,8 +53,14 @@ struct PMultigridOptions {
   int eigenvalue_iterations = 12;  ///< Lanczos (CG) steps estimating lambda_max(D^-1 A)
   double eigenvalue_safety = 1.2;  ///< the estimate is from below; scaled up by this
   /// The order-1 level is factorised (CHOLMOD) up to this many unknowns, above it
-  /// preconditioned by one BoomerAMG V-cycle.
-  Eigen::Index direct_coarse_limit = 30000;
+  /// preconditioned by one BoomerAMG V-cycle. Measured (BM_TimeToError medians,
+  /// limit 30,000 vs 2,000): P2 n = 12 0.369 vs 0.296 s, n = 16 0.996 vs 0.839 s;
+  /// P3 n = 8 0.424 vs 0.402 s, n = 12 1.76 vs 1.61 s, n = 16 4.41 vs 4.08 s; NH P3
+  /// n = 8 1.35 vs 1.33 s. The factorisation's cost grows superlinearly (0.22 s
+  /// for the 10k order-1 unknowns of P2 n = 16), AMG's set-up linearly, for one or
+  /// two more CG iterations. (A process's first BoomerAMG set-up also starts MPI
+  /// and hypre, ~0.15 s once.)
+  Eigen::Index direct_coarse_limit = 2000;
   std::string coarse_amg = "amg";  ///< the BoomerAMG variant above the limit (solver/boomeramg.hpp)
 };
 

@@ -154,7 +154,7 @@ MmsProblem::MmsProblem(const MmsCase& c) {
 }
 
 double mms_algebraic_tolerance(double h, int order) {
-  return std::clamp(0.01 * std::pow(h, order + 1), 1e-10, 1e-6);
+  return std::clamp(0.01 * std::pow(h, order + 1), 1e-10, 1e-5);
 }
 
 MmsErrors mms_errors(const Mesh& mesh, const ManufacturedDisplacement& ustar, const Eigen::VectorXd& u) {

@@ -112,14 +112,15 @@ MmsErrors mms_errors(const Mesh& mesh, const ManufacturedDisplacement& ustar, co
 /// Residual tolerance (Newton's |g| <= rtol * force scale, which a linear problem
 /// meets in its one linear solve) that keeps the algebraic error far below the
 /// discretisation error of order p on cubes of side h: 0.01 (h / L)^(p + 1), L = 1
-/// the cube's side, within [1e-10, 1e-6]. Measured (L2 error against CHOLMOD's on
-/// the same mesh, CG + pmg): the relative change of the L2 error is ~100x the
-/// residual tolerance relative to (h / L)^(p + 1) -- P3 n = 12 (h^4 = 4.8e-5): rtol
-/// 1e-6 moves it 8.6e-5, 1e-5 moves it 1.2e-3; P2 n = 16 (h^3 = 2.4e-4): 1e-5
-/// moves it 5.2e-4, 1e-4 moves it 5.5e-3 -- so 0.01 h^(p+1) keeps it near 1e-4,
-/// 100x inside the 1 % the solver switch may cost. The measured error constants
-/// of u* (L2 error / h^(p+1) = 0.13-0.4) are what make (h / L)^(p + 1) the right
-/// scale here; a problem of unknown error keeps Newton's own tolerance.
+/// the cube's side, within [1e-10, 1e-5]. Measured (L2 error against CHOLMOD's on
+/// the same mesh, CG + pmg): the relative change of the L2 error is 0.004-0.013
+/// times rtol / h^(p+1) -- P3 n = 12 (h^4 = 4.8e-5): rtol 1e-6 moves it 8.6e-5,
+/// 1e-5 moves it 1.2e-3; P2 n = 16 (h^3 = 2.4e-4): 1e-5 moves it 5.2e-4, 1e-4
+/// moves it 5.5e-3 -- so 0.01 h^(p+1) keeps it near 1e-4, ~100x inside the 1 % the
+/// solver switch may cost (every study row checks it: mms.solver_switch). The
+/// error constants of u* (L2 error / h^(p+1) = 0.13-0.4) are what make
+/// (h / L)^(p + 1) the right scale here; a problem of unknown error keeps
+/// Newton's own tolerance.
 double mms_algebraic_tolerance(double h, int order);
 
 MmsResult run_mms(const MmsCase& c);
