@@ -337,13 +337,14 @@ def plot_time_to_error(reports):
     fig.savefig(reports / "time_to_error.png", dpi=110)
     plt.close(fig)
     print("\n## Time to error (BM_TimeToError medians, 2 cores)\n")
-    print("| case | solver used | unknowns | total s | setup / assembly / solve s | iterations (linear / Newton) "
-          "| L2 error | reference L2 | diff | peak MB |")
-    print("|---|---|---:|---:|---|---|---:|---:|---:|---:|")
+    print("| case | solver used | unknowns | total s | setup / assembly / solve s | solver set-up s (us/unknown) "
+          "| iterations (linear / Newton) | L2 error | reference L2 | diff | peak MB |")
+    print("|---|---|---:|---:|---|---|---|---:|---:|---:|---:|")
     for (problem, order, solver, label), pts in sorted(series.items()):
         for t, e, n, b in sorted(pts, key=lambda p: p[2]):
             print(f"| {problem} P{order} n={n} {solver} | {b['label'].split('|')[1]} | {b['unknowns']:.0f} | {t:.3f} "
                   f"| {b['setup_s']:.3f} / {b['assembly_s']:.3f} / {b['solve_s']:.3f} "
+                  f"| {b.get('solver_setup_s', float('nan')):.3f} ({b.get('solver_setup_us_per_unknown', float('nan')):.2f}) "
                   f"| {b['linear_iterations']:.0f} / {b['newton_iterations']:.0f} | {e:.4e} "
                   f"| {b['reference_l2_error']:.4e} | {b['l2_vs_reference']:.1e} | {b['peak_mb']:.0f} |")
     targets = (("linear", 3, 12, 1.8), ("linear", 2, 16, 0.9), ("neohookean", 3, 8, 1.3), ("linear", 3, 16, 4.5))
