@@ -123,7 +123,7 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseM
 // Single-precision copy, D_b^-1 for every node (from the diagonal blocks, SPD when
 // A is), the Chebyshev bound, work vectors.
 bool PMultigridPreconditioner::set_level_values(Level& level, std::size_t index) {
-  level.smooth = BlockSparseMatrix<float>(level_operator(index));
+  level.smooth.assign(level_operator(index));
   const Eigen::Index nb = level.smooth.block_rows();
   level.inverse_diagonal.resize(static_cast<size_t>(nb));
   for (Eigen::Index b = 0; b < nb; ++b) {

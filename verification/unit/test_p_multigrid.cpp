@@ -198,6 +198,15 @@ CgRun solve(const CubeSystem& s, const std::string& name, const Eigen::VectorXd&
   return run;
 }
 
+// K^-1 b by CHOLMOD: the reference of the iterative solves.
+Eigen::VectorXd direct_solution(const CubeSystem& s, const Eigen::VectorXd& b) {
+  auto direct = make_linear_solver("cholmod");
+  EXPECT_TRUE(direct->factorize(s.K));
+  Eigen::VectorXd x;
+  direct->solve(b, x);
+  return x;
+}
+
 // CG + pmg reaches 1e-10 and agrees with CHOLMOD: the relative error is bounded by
 // cond(K) * 1e-10 with cond(K) ~1e3-1e4 on these small cubes, so 1e-5 is safe.
 // It needs far fewer iterations than CG + Jacobi: observed (pmg / jacobi) Tet10
@@ -207,10 +216,7 @@ TEST(PMultigrid, CgConvergesAndAgreesWithCholmod) {
   for (const Element& el : {kTet10, kTet20, kHex20}) {
     const CubeSystem s(el.cell == CellType::Hexahedron ? 4 : 3, el.cell, el.order);
     const Eigen::VectorXd b = rhs(s.K.rows());
-    auto direct = make_linear_solver("cholmod");
-    ASSERT_TRUE(direct->factorize(s.K));
-    Eigen::VectorXd x_ref;
-    direct->solve(b, x_ref);
+    const Eigen::VectorXd x_ref = direct_solution(s, b);
     const CgRun pmg = solve(s, "pmg", b), jacobi = solve(s, "jacobi", b);
     EXPECT_LE((b - s.K * pmg.x).norm() / b.norm(), 1e-10) << el.name;
     EXPECT_LE((pmg.x - x_ref).norm() / x_ref.norm(), 1e-5) << el.name;
@@ -228,10 +234,7 @@ TEST(PMultigrid, AmgCoarseLevelConverges) {
   for (const Element& el : {kTet10, kTet20, kHex20}) {
     const CubeSystem s(el.cell == CellType::Hexahedron ? 4 : 3, el.cell, el.order);
     const Eigen::VectorXd b = rhs(s.K.rows());
-    auto direct = make_linear_solver("cholmod");
-    ASSERT_TRUE(direct->factorize(s.K));
-    Eigen::VectorXd x_ref;
-    direct->solve(b, x_ref);
+    const Eigen::VectorXd x_ref = direct_solution(s, b);
     PMultigridOptions opt;
     opt.direct_coarse_limit = 0;
     PMultigridPreconditioner M(opt);
