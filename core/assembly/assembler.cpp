@@ -67,6 +67,31 @@ void for_each_element(const Mesh& mesh, const SparsityPattern& pattern, Body&& b
   }
 }
 
+// Adds element e's block H (3n x 3n, column-major) into the value array of a
+// matrix with the pattern's structure: per node pair one stored position, the 3x3
+// block's columns at steps of node j's column length, each column's 3 entries
+// consecutive (SparsityPattern). Elements of one colour share no node, so
+// concurrent calls write disjoint entries.
+template <class Block>
+void scatter_block(const SparsityPattern& pattern, const Mesh& mesh, int e, const Block& H, double* values) {
+  const int n = pattern.nodes_per_element();
+  const int* map = pattern.element_map(e);
+  for (int j = 0; j < n; ++j) {
+    const int stride = pattern.column_length(mesh.elements(j, e));
+    const int* mj = map + j * n;
+    for (int b = 0; b < 3; ++b) {
+      const double* h = H.data() + static_cast<std::ptrdiff_t>(3 * j + b) * H.rows();  // column 3j + b of H
+      double* column = values + static_cast<std::ptrdiff_t>(b) * stride;
+      for (int i = 0; i < n; ++i)
+        if (const int pos = mj[i]; pos >= 0) {
+          column[pos] += h[3 * i];
+          column[pos + 1] += h[3 * i + 1];
+          column[pos + 2] += h[3 * i + 2];
+        }
+    }
+  }
+}
+
 // Reference and current coordinates of element e's nodes (x: 3 per node).
 template <int N>
 void gather(const Mesh& mesh, const double* x, int e, ElementWorkspace<N>& ws) {
@@ -207,7 +232,6 @@ double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::
   else pattern_->zero_values(K);
   g.setZero(3 * mesh_.num_nodes());
   double* values = K.valuePtr();
-  const int bd = pattern_->block_dim();
   std::vector<double> per_element(mesh_.num_elements());
   dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
     constexpr int N = decltype(n)::value;
@@ -215,10 +239,7 @@ double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::
       gather(mesh_, x.data(), e, ws);
       per_element[e] = element_hessian(mat, tabulation_of(e), weights_of(e), ws, project && !mat.constant_tangent());
       for (int i = 0; i < ws.nodes(); ++i) g.segment<3>(3 * mesh_.elements(i, e)) += ws.g.template segment<3>(3 * i);
-      const int* map = pattern_->element_map(e);
-      for (int r = 0; r < bd; ++r)
-        for (int c = 0; c < bd; ++c)
-          if (const int pos = map[r * bd + c]; pos >= 0) values[pos] += ws.H(r, c);
+      scatter_block(*pattern_, mesh_, e, ws.H, values);
     });
   });
   double total = 0.0;
@@ -288,13 +309,15 @@ void for_each_element_mass(const Mesh& mesh, const SparsityPattern& pattern, con
 SparseMatrix Assembler::mass_matrix(double density, int degree) const {
   SparseMatrix M = new_matrix();
   double* values = M.valuePtr();
-  const int bd = pattern_->block_dim();
+  const int n = pattern_->nodes_per_element();
   for_each_element_mass(mesh_, *pattern_, mass_quadrature_, density, degree, [&](int e, const auto& Me) {
     const int* map = pattern_->element_map(e);
-    for (int i = 0; i < Me.rows(); ++i)
-      for (int j = 0; j < Me.cols(); ++j)
-        for (int a = 0; a < 3; ++a)
-          if (const int pos = map[(3 * i + a) * bd + 3 * j + a]; pos >= 0) values[pos] += Me(i, j);
+    for (int j = 0; j < n; ++j) {
+      const int stride = pattern_->column_length(mesh_.elements(j, e));
+      for (int i = 0; i < n; ++i)
+        if (const int pos = map[j * n + i]; pos >= 0)
+          for (int a = 0; a < 3; ++a) values[pos + a * stride + a] += Me(i, j);  // entry (3i + a, 3j + a)
+    }
   });
   return M;
 }

@@ -1,9 +1,13 @@
 #pragma once
 // The sparsity pattern of an element-assembled matrix over the free DOFs,
 // computed once per (mesh, DofMap), with
-//  - an element-to-nonzero map: for each element the position in the matrix's
-//    value array of every entry of its (3n x 3n) block (-1 where a row or column
-//    is constrained), so re-assembly only writes values;
+//  - an element-to-nonzero map at node level: for each element and node pair
+//    (i, j) the position in the matrix's value array of entry (3i, 3j) of its
+//    (3n x 3n) block (-1 where node i or j is constrained); the other eight
+//    entries of the 3x3 block follow from the column length of node j (below),
+//    so re-assembly only writes values. Per node pair rather than per entry:
+//    9x less memory (Tet20 at 10k elements: 16 MB instead of 150 MB) and 9x
+//    fewer index loads in the scatter;
 //  - an element colouring: elements of one colour share no node, so one colour
 //    is assembled in parallel without atomics, in a fixed order (results are
 //    bitwise reproducible whatever the thread count).
@@ -27,10 +31,16 @@ class SparsityPattern {
   void shape(SparseMatrix& K) const;
   /// Sets every value of a matrix of this pattern to zero (in parallel).
   void zero_values(SparseMatrix& K) const;
-  /// Positions of element e's block entries in the value array, row-major over
-  /// (3 i + a, 3 j + b) of the element block: size (3n)^2.
+  /// Node-pair positions of element e (n^2 entries, j-major: entry j n + i is
+  /// the position of block entry (3i, 3j), -1 if node i or j is constrained).
+  /// Entry (3i + a, 3j + b) sits at that position + b * column_length(node j) + a:
+  /// a free node's three components are consecutive rows of every column, and
+  /// its three columns have the same rows.
   const int* element_map(int e) const { return map_.data() + static_cast<size_t>(e) * block_size_; }
-  int block_dim() const { return block_dim_; }
+  /// Nonzeros in each column of a free node (3 x its free neighbours, itself
+  /// included); 0 for a constrained node. Indexed by mesh node.
+  int column_length(int node) const { return column_length_[node]; }
+  int nodes_per_element() const { return nodes_; }
   /// Element ids grouped by colour.
   const std::vector<std::vector<int>>& colours() const { return colours_; }
   std::int64_t nonzeros() const { return pattern_.nonZeros(); }
@@ -40,7 +50,8 @@ class SparsityPattern {
  private:
   SparseMatrix pattern_;
   std::vector<int> map_;
-  int block_dim_ = 0;
+  std::vector<int> column_length_;
+  int nodes_ = 0;
   size_t block_size_ = 0;
   std::vector<std::vector<int>> colours_;
 };

@@ -59,7 +59,10 @@ struct ElementWorkspace {
 /// dN/dX and w |det J| at quadrature point q; throws ElementGeometryError if det J <= 0.
 template <int N>
 double reference_gradients(const BasisTabulation& tab, const Eigen::VectorXd& weights, int q, ElementWorkspace<N>& ws) {
-  const auto dNdxi = tab.gradient(q);  // n x 3
+  // n x 3, as a fixed-size map where n is a compile-time constant: Eigen then
+  // inlines the small products instead of calling its general GEMM.
+  const Eigen::Map<const typename ElementWorkspace<N>::Grad> dNdxi(tab.gradients.data() + 3 * q * tab.gradients.rows(),
+                                                                   tab.gradients.rows(), 3);
   const Eigen::Matrix3d J = ws.X * dNdxi;
   const double det = J.determinant();
   if (!(det > 0.0)) throw ElementGeometryError("inverted or degenerate element (det J = " + std::to_string(det) + ")");

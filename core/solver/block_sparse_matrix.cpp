@@ -39,6 +39,25 @@ void block_columns(const SparseMatrix& A, Eigen::Index i, Emit&& emit) {
   }
 }
 
+// The number of blocks of block row i when its three columns hold the same rows
+// in whole aligned triples (3m, 3m + 1, 3m + 2): every matrix assembled over
+// nodes with all or none of their components free (SparsityPattern). Then block
+// k of the row is column inner[outer[3i] + 3k] / 3, and no merge is needed.
+// -1 otherwise.
+std::int64_t node_structured_blocks(const SparseMatrix& A, Eigen::Index i) {
+  const std::int64_t* outer = A.outerIndexPtr();
+  const std::int64_t* inner = A.innerIndexPtr();
+  const std::int64_t length = outer[3 * i + 1] - outer[3 * i];
+  if (length % 3 != 0 || outer[3 * i + 2] - outer[3 * i + 1] != length || outer[3 * i + 3] - outer[3 * i + 2] != length)
+    return -1;
+  for (int c = 0; c < 3; ++c) {
+    const std::int64_t* r = inner + outer[3 * i + c];
+    for (std::int64_t q = 0; q < length; q += 3)
+      if (r[q] % 3 != 0 || r[q + 1] != r[q] + 1 || r[q + 2] != r[q] + 2 || r[q] != inner[outer[3 * i] + q]) return -1;
+  }
+  return length / 3;
+}
+
 }  // namespace
 
 template <class T>
@@ -51,8 +70,11 @@ BlockSparseMatrix<T>::BlockSparseMatrix(const SparseMatrix& A) {
   const bool parallel = A.nonZeros() >= 9 * kParallelBlocks;
 #pragma omp parallel for schedule(static) if (parallel)
   for (Eigen::Index i = 0; i < nb; ++i) {
-    std::int64_t k = 0;
-    block_columns(A, i, [&](std::int64_t) { ++k; });
+    std::int64_t k = node_structured_blocks(A, i);
+    if (k < 0) {
+      k = 0;
+      block_columns(A, i, [&](std::int64_t) { ++k; });
+    }
     count[i + 1] = k;
   }
   for (Eigen::Index i = 0; i < nb; ++i) count[i + 1] += count[i];
@@ -64,12 +86,19 @@ BlockSparseMatrix<T>::BlockSparseMatrix(const SparseMatrix& A) {
 #pragma omp parallel for schedule(static) if (parallel)
   for (Eigen::Index i = 0; i < nb; ++i) {
     std::int32_t k = row_start_[i];
-    block_columns(A, i, [&](std::int64_t j) {
+    auto emit = [&](std::int64_t j) {
       if (j == i) diagonal_[i] = k;
       column_[k++] = static_cast<std::int32_t>(j);
-    });
+    };
+    if (const std::int64_t blocks = node_structured_blocks(A, i); blocks >= 0) {
+      const std::int64_t* first = A.innerIndexPtr() + A.outerIndexPtr()[3 * i];
+      for (std::int64_t t = 0; t < blocks; ++t) emit(first[3 * t] / 3);
+    } else {
+      block_columns(A, i, emit);
+    }
   }
-  value_.assign(9 * column_.size() + kPadding, T(0));
+  value_.resize(9 * column_.size() + kPadding);  // set_values() writes every block on the thread that reads it
+  std::fill(value_.end() - kPadding, value_.end(), T(0));
   parallel_ = blocks() >= kParallelBlocks;
   source_nonzeros_ = A.nonZeros();
   set_values(A);
@@ -153,6 +182,19 @@ std::int64_t BlockSparseMatrix<T>::bytes() const {
 namespace {
 
 #if defined(__AVX2__) && defined(__FMA__)
+// Software prefetch of the values kPrefetchValues ahead (4 KB of floats, 8 KB of
+// doubles), every cache line of them: a block is 36 bytes in float (one line per
+// block covers them all), 72 in double (two lines). The hardware prefetcher alone
+// leaves a product latency-bound. Measured on the P3 n = 12 matrix (1.86 M blocks,
+// 2 threads, best of 30): float 4.83 -> 1.76 ms, double 7.90 -> 6.86 ms; distances
+// 512-4096 values within 10 % of each other, 128 clearly worse.
+constexpr std::int64_t kPrefetchValues = 1024;
+template <class T>
+inline void prefetch_ahead(const T* w) {
+  _mm_prefetch(reinterpret_cast<const char*>(w + kPrefetchValues), _MM_HINT_T0);
+  if constexpr (sizeof(T) == 8) _mm_prefetch(reinterpret_cast<const char*>(w + kPrefetchValues + 8), _MM_HINT_T0);
+}
+
 // One block column (3 values and the next one, ignored) as 4 doubles.
 inline __m256d load_column(const double* v) { return _mm256_loadu_pd(v); }
 inline __m256d load_column(const float* v) { return _mm256_cvtps_pd(_mm_loadu_ps(v)); }
@@ -172,6 +214,7 @@ Eigen::Vector3d BlockSparseMatrix<T>::row_product(Eigen::Index i, const double* 
   __m256d even = _mm256_setzero_pd(), odd = _mm256_setzero_pd();
   std::int32_t k = begin;
   auto block = [&](std::int32_t b, const T* w) {
+    prefetch_ahead(w);
     const double* xc = x + 3 * static_cast<std::int64_t>(column_[b]);
     const __m256d t = _mm256_fmadd_pd(load_column(w + 6), _mm256_set1_pd(xc[2]),
                                       _mm256_mul_pd(load_column(w), _mm256_set1_pd(xc[0])));

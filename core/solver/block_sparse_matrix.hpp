@@ -20,9 +20,33 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 namespace hofem {
+
+/// An allocator whose resize() leaves new elements uninitialised (default-init
+/// instead of value-init): value arrays of ~100 MB are written in parallel right
+/// after allocation, so a serial zero fill first would double their cost.
+template <class T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <class U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
 
 template <class T>
 class BlockSparseMatrix {
@@ -77,7 +101,7 @@ class BlockSparseMatrix {
   std::vector<std::int32_t> diagonal_;      ///< position of each row's diagonal block (-1: none)
   /// 9 per block, column-major within the block (a column is 3 consecutive
   /// values, so a 4-wide load takes it whole), plus padding for the last load.
-  std::vector<T> value_;
+  std::vector<T, UninitializedAllocator<T>> value_;
   std::int64_t source_nonzeros_ = 0;        ///< nonzeros of the matrix it was built from
   bool parallel_ = false;
 
@@ -90,8 +114,14 @@ template <class T>
 template <class U>
 BlockSparseMatrix<T>::BlockSparseMatrix(const BlockSparseMatrix<U>& other)
     : row_start_(other.row_start_), column_(other.column_), diagonal_(other.diagonal_),
-      value_(other.value_.begin(), other.value_.end()), source_nonzeros_(other.source_nonzeros_),
-      parallel_(other.parallel_) {}
+      source_nonzeros_(other.source_nonzeros_), parallel_(other.parallel_) {
+  value_.resize(other.value_.size());  // uninitialised: converted on every thread
+  const std::int64_t n = static_cast<std::int64_t>(value_.size());
+  T* out = value_.data();
+  const U* in = other.value_.data();
+#pragma omp parallel for schedule(static) if (parallel_)
+  for (std::int64_t k = 0; k < n; ++k) out[k] = static_cast<T>(in[k]);
+}
 
 template <class T>
 template <class U>

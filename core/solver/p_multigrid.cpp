@@ -126,14 +126,17 @@ bool PMultigridPreconditioner::set_level_values(Level& level, std::size_t index)
   level.smooth.assign(level_operator(index));
   const Eigen::Index nb = level.smooth.block_rows();
   level.inverse_diagonal.resize(static_cast<size_t>(nb));
+  Eigen::Index failed = nb;  // the first node whose block is not SPD (the same whatever the thread count)
+#pragma omp parallel for schedule(static) reduction(min : failed) if (level.smooth.parallel())
   for (Eigen::Index b = 0; b < nb; ++b) {
     const Eigen::LLT<Eigen::Matrix3d> llt(level.smooth.diagonal_block(b));
-    if (llt.info() != Eigen::Success) {
-      error_ = fmt::format("pmg: level {} (order {}): diagonal block of node {} is not positive definite", index,
-                           hierarchy_->level(static_cast<int>(index)).order, b);
-      return false;
-    }
-    level.inverse_diagonal[b] = llt.solve(Eigen::Matrix3d::Identity());
+    if (llt.info() != Eigen::Success) failed = std::min(failed, b);
+    else level.inverse_diagonal[b] = llt.solve(Eigen::Matrix3d::Identity());
+  }
+  if (failed < nb) {
+    error_ = fmt::format("pmg: level {} (order {}): diagonal block of node {} is not positive definite", index,
+                         hierarchy_->level(static_cast<int>(index)).order, failed);
+    return false;
   }
   const Eigen::Index n = level.smooth.rows();
   level.res.setZero(n);
