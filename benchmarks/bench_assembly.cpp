@@ -3,6 +3,9 @@
 // mesh; the others run every Newton iteration). Counters: elements/s and
 // quadrature points/s (rates over the measured time), DOFs, nonzeros.
 #include "assembly/assembler.hpp"
+#include "basis/basis_tabulation.hpp"
+#include "bench_common.hpp"
+#include "element/element_kernel.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 
@@ -96,6 +99,56 @@ void BM_AssembleHessian(benchmark::State& state) {
 BENCHMARK(BM_AssembleEnergy)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3, 4}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_AssembleGradient)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3, 4}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_AssembleHessian)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3, 4}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The element Hessian kernel alone (gather and element_hessian, no scatter), on
+// every OpenMP thread, against the FMA peak measured right after on as many
+// threads: GFLOPs counts the FLOPs element_hessian executes
+// (element_hessian_flops: geometry, F, forces, the E Gt product; the material's
+// dP/dF not counted, so the fraction is a lower bound).
+template <int N>
+void element_kernel_loop(const Setup& s, const Material& mat, double& sink) {
+  const Mesh& mesh = s.mesh;
+  const BasisTabulation& tab = cached_tabulation(mesh.cell, mesh.order, s.assembler->quadrature_degree());
+  const Eigen::VectorXd& w = s.assembler->rule().weights;
+  double total = 0.0;
+#pragma omp parallel reduction(+ : total)
+  {
+    ElementWorkspace<N> ws(mesh.nodes_per_element());
+#pragma omp for schedule(static)
+    for (int e = 0; e < mesh.num_elements(); ++e) {
+      for (int i = 0; i < ws.nodes(); ++i) {
+        const int node = mesh.elements(i, e);
+        ws.X.col(i) = mesh.nodes.col(node);
+        ws.x.col(i) = s.x.segment<3>(3 * node);
+      }
+      total += element_hessian(mat, tab, w, ws, false) + ws.H(1, 2);
+    }
+  }
+  sink += total;
+}
+
+void BM_ElementKernel(benchmark::State& state) {
+  const int kind = static_cast<int>(state.range(0));
+  Setup& s = setup(kind);
+  const auto mat = make_material(kMaterials[state.range(1)], LameParameters::from_young_poisson(1.0, 0.3));
+  double sink = 0.0;
+  for (auto _ : state) {
+    switch (s.mesh.nodes_per_element()) {
+      case 10: element_kernel_loop<10>(s, *mat, sink); break;
+      case 20: element_kernel_loop<20>(s, *mat, sink); break;
+      default: element_kernel_loop<Eigen::Dynamic>(s, *mat, sink); break;
+    }
+  }
+  benchmark::DoNotOptimize(sink);
+  const double flops = element_hessian_flops(s.mesh.nodes_per_element(), s.assembler->rule().size()) *
+                       static_cast<double>(s.mesh.num_elements());
+  state.counters["GFLOPs"] = benchmark::Counter(flops / 1e9, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["flops_per_element"] = flops / static_cast<double>(s.mesh.num_elements());
+  state.counters["fma_peak_GFLOPs"] = bench::measure_fma_peak(omp_get_max_threads()) / 1e9;
+  state.counters["threads"] = omp_get_max_threads();
+  set_counters(state, s);
+}
+BENCHMARK(BM_ElementKernel)->ArgsProduct({{1, 2, 4}, {0, 3}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Hessian assembly with 1 and 2 OpenMP threads (Neo-Hookean): what the second core buys.
 void BM_AssembleHessianThreads(benchmark::State& state) {

@@ -17,10 +17,16 @@
 //                  (triad_now_GBps): on a loaded machine the two floors differ.
 #include "bench_common.hpp"
 
+#include "assembly/assembler.hpp"
+#include "manufactured_solution.hpp"
+#include "solver/block_sparse_matrix.hpp"
 #include "solver/krylov.hpp"
+#include "solver/linear_operator.hpp"
+#include "solver/p_multigrid.hpp"
 #include "solver/preconditioner.hpp"
 
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 #include <omp.h>
 
 #include <string>
@@ -74,6 +80,95 @@ void BM_Triad(benchmark::State& state) {
   state.SetLabel(threaded ? "triad, all OpenMP threads" : "triad, 1 thread (the floor's kernel)");
 }
 BENCHMARK(BM_Triad)->Arg(0)->Arg(1)->UseManualTime()->Unit(benchmark::kMillisecond);
+
+// The compute peak: independent FMA chains in the build's widest vectors on 1
+// thread and on every OpenMP thread (element kernels quote their executed FLOPs
+// beside it, BM_ElementKernel).
+void BM_FmaPeak(benchmark::State& state) {
+  const int threads = state.range(0) != 0 ? omp_get_max_threads() : 1;
+  double peak = 0.0;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    peak = measure_fma_peak(threads);
+    state.SetIterationTime(seconds_since(t0));
+  }
+  state.counters["GFLOPs"] = peak / 1e9;
+  state.counters["threads"] = threads;
+#if defined(__AVX512F__)
+  state.SetLabel("AVX-512 FMA");
+#elif defined(__AVX2__)
+  state.SetLabel("AVX2 FMA");
+#else
+  state.SetLabel("scalar FMA");
+#endif
+}
+BENCHMARK(BM_FmaPeak)->Arg(0)->Arg(1)->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+
+// One iteration of CG preconditioned by the p-multigrid (the default solver of
+// order >= 2, solver/solver_choice.cpp) on the linear manufactured-solution
+// cube of BM_TimeToError: (CG with 12 iterations - CG with 4) / 8, the operator
+// the double-precision block copy, as KrylovSolver runs it. Bytes of one
+// iteration: the block product (values, indices, operand, result), CG's vector
+// traffic (17 vectors, as BM_CgIteration), and the preconditioner's
+// PMultigridPreconditioner::bytes_per_apply(). The floor here is the triad on
+// every thread measured right after (the iteration itself runs on every thread).
+void BM_PmgIteration(benchmark::State& state, int order, int n) {
+  verification::MmsCase c;
+  c.problem = "linear";
+  c.order = order;
+  c.n = n;
+  const verification::MmsProblem p(c);
+  const DofMap dofs(p.mesh.num_nodes(), p.mesh.node_set("boundary"));
+  const Assembler assembler(p.mesh, dofs, p.options.quadrature_degree);
+  const Eigen::VectorXd x0 = Eigen::Map<const Eigen::VectorXd>(p.mesh.nodes.data(), 3 * p.mesh.num_nodes());
+  Eigen::VectorXd g;
+  SparseMatrix K;
+  assembler.hessian(*p.material, x0, g, K, false);
+  const Eigen::VectorXd b = dofs.restrict(assembler.body_force_vector(p.body_force, p.options.load_degree));
+  const BlockSparseMatrix<double> blocks(K);
+  PMultigridPreconditioner pmg;
+  pmg.set_discretization({&p.mesh, &dofs});
+  if (!pmg.setup(K, blocks)) {
+    state.SkipWithError(pmg.last_error().c_str());
+    return;
+  }
+  const BlockOperator<double> A(blocks);
+  KrylovOptions few, many;
+  few.rtol = many.rtol = 0.0;  // never converged: exactly max_iterations iterations
+  few.max_iterations = 4;
+  many.max_iterations = 12;
+  Eigen::VectorXd x;
+  auto timed = [&](const KrylovOptions& o) {
+    x.setZero(b.size());
+    const auto t0 = Clock::now();
+    const KrylovResult r = conjugate_gradient(A, b, x, pmg, o);
+    benchmark::DoNotOptimize(r.iterations);
+    return seconds_since(t0);
+  };
+  double total = 0.0;
+  for (auto _ : state) {
+    const double t = (timed(many) - timed(few)) / (many.max_iterations - few.max_iterations);
+    total += t;
+    state.SetIterationTime(t);
+  }
+  const double seconds = total / static_cast<double>(state.iterations());
+  const double rows = static_cast<double>(K.rows());
+  const double product = static_cast<double>(blocks.bytes()) + 16.0 * rows, vectors = 17.0 * 8.0 * rows;
+  const double bytes = product + vectors + pmg.bytes_per_apply();
+  const double triad = measure_triad_all_threads(5);
+  state.counters["bytes"] = bytes;
+  state.counters["product_bytes"] = product;
+  state.counters["preconditioner_bytes"] = pmg.bytes_per_apply();
+  state.counters["triad_all_threads_GBps"] = triad / 1e9;
+  state.counters["achieved_GBps"] = bytes / seconds / 1e9;
+  state.counters["floor_seconds"] = bytes / triad;
+  state.counters["floor_ratio"] = seconds / (bytes / triad);
+  state.counters["unknowns"] = rows;
+  state.counters["nonzeros"] = static_cast<double>(K.nonZeros());
+  state.counters["order"] = order;
+  state.counters["n"] = n;
+  state.SetLabel(fmt::format("mms-linear/tet/p{}/n{} pmg-CG, one iteration", order, n));
+}
 
 SystemKey matrix_key(int order, int level) {
   return {"mms-linear", CellType::Tetrahedron, order, cubes_for_level("mms-linear", CellType::Tetrahedron, order, level)};
@@ -148,6 +243,13 @@ void run_cg_iteration(benchmark::State& state, int order, int level) {
 }  // namespace
 
 void register_bandwidth() {
+  // The time-to-error targets' meshes (linear P2 n = 16, P3 n = 12).
+  for (auto [order, n] : {std::pair{2, 16}, std::pair{3, 12}})
+    benchmark::RegisterBenchmark(fmt::format("BM_PmgIteration/mms-linear/tet/p{}/n{}", order, n).c_str(),
+                                 [order, n](benchmark::State& s) { BM_PmgIteration(s, order, n); })
+        ->UseManualTime()
+        ->Iterations(3)
+        ->Unit(benchmark::kMillisecond);
   const int top = preset().max_level;
   for (int level = 2; level <= top; ++level)
     for (int order = 1; order <= 3; ++order) {

@@ -2,6 +2,10 @@
 // the cache of linear systems, memory and bandwidth measurement, histories.
 #include "bench_common.hpp"
 
+#if defined(__AVX2__) || defined(__AVX512F__)
+#include <immintrin.h>
+#endif
+
 #include "assembly/assembler.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
@@ -249,6 +253,88 @@ double measure_triad(int passes) {
   }
   benchmark::DoNotOptimize(a.data());
   return 24.0 * static_cast<double>(n) / best;
+}
+
+double measure_triad_all_threads(int passes) {
+  const Eigen::Index n = Eigen::Index{64} << 17;
+  Eigen::VectorXd a(n), b(n), c(n);
+  double* pa = a.data();
+  double* pb = b.data();
+  double* pc = c.data();
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index i = 0; i < n; ++i) pa[i] = 0.0, pb[i] = 1.0, pc[i] = 2.0;  // first touch on the threads that use it
+  const double scalar = 3.0;
+  double best = 1e30;
+  for (int pass = 0; pass < passes; ++pass) {
+    const auto t0 = Clock::now();
+#pragma omp parallel for schedule(static)
+    for (Eigen::Index i = 0; i < n; ++i) pa[i] = pb[i] + scalar * pc[i];
+    benchmark::ClobberMemory();
+    best = std::min(best, seconds_since(t0));
+  }
+  benchmark::DoNotOptimize(a.data());
+  return 24.0 * static_cast<double>(n) / best;
+}
+
+namespace {
+
+// 12 independent FMA chains (latency 4 cycles x 2 FMA pipes needs >= 8), each a
+// vector of the build's widest type; `steps` rounds. Returns the FLOPs done.
+double fma_chains(long steps, double* sink) {
+#if defined(__AVX512F__)
+  using V = __m512d;
+  constexpr int kLanes = 8;
+  auto fma = [](V a, V m, V c) { return _mm512_fmadd_pd(a, m, c); };
+  V m = _mm512_set1_pd(0.999999), c = _mm512_set1_pd(1e-9);
+  V a0 = _mm512_set1_pd(1.0), a1 = a0, a2 = a0, a3 = a0, a4 = a0, a5 = a0, a6 = a0, a7 = a0, a8 = a0, a9 = a0, a10 = a0, a11 = a0;
+  auto sum = [](V v) { return _mm512_reduce_add_pd(v); };
+#elif defined(__AVX2__) && defined(__FMA__)
+  using V = __m256d;
+  constexpr int kLanes = 4;
+  auto fma = [](V a, V m, V c) { return _mm256_fmadd_pd(a, m, c); };
+  V m = _mm256_set1_pd(0.999999), c = _mm256_set1_pd(1e-9);
+  V a0 = _mm256_set1_pd(1.0), a1 = a0, a2 = a0, a3 = a0, a4 = a0, a5 = a0, a6 = a0, a7 = a0, a8 = a0, a9 = a0, a10 = a0, a11 = a0;
+  auto sum = [](V v) {
+    alignas(32) double t[4];
+    _mm256_store_pd(t, v);
+    return t[0] + t[1] + t[2] + t[3];
+  };
+#else
+  using V = double;
+  constexpr int kLanes = 1;
+  auto fma = [](V a, V m, V c) { return std::fma(a, m, c); };
+  V m = 0.999999, c = 1e-9;
+  V a0 = 1.0, a1 = a0, a2 = a0, a3 = a0, a4 = a0, a5 = a0, a6 = a0, a7 = a0, a8 = a0, a9 = a0, a10 = a0, a11 = a0;
+  auto sum = [](V v) { return v; };
+#endif
+  for (long i = 0; i < steps; ++i) {
+    a0 = fma(a0, m, c), a1 = fma(a1, m, c), a2 = fma(a2, m, c), a3 = fma(a3, m, c);
+    a4 = fma(a4, m, c), a5 = fma(a5, m, c), a6 = fma(a6, m, c), a7 = fma(a7, m, c);
+    a8 = fma(a8, m, c), a9 = fma(a9, m, c), a10 = fma(a10, m, c), a11 = fma(a11, m, c);
+  }
+  *sink = sum(a0) + sum(a1) + sum(a2) + sum(a3) + sum(a4) + sum(a5) + sum(a6) + sum(a7) + sum(a8) + sum(a9) +
+          sum(a10) + sum(a11);
+  return 12.0 * 2.0 * kLanes * static_cast<double>(steps);
+}
+
+}  // namespace
+
+double measure_fma_peak(int threads) {
+  const long steps = 20'000'000;  // ~0.1 s at the peak of these machines
+  double best = 0.0;
+  for (int pass = 0; pass < 3; ++pass) {
+    double flops = 0.0, sink = 0.0;
+    const auto t0 = Clock::now();
+#pragma omp parallel num_threads(threads) reduction(+ : flops, sink)
+    {
+      double s = 0.0;
+      flops += fma_chains(steps, &s);
+      sink += s;
+    }
+    benchmark::DoNotOptimize(sink);
+    best = std::max(best, flops / seconds_since(t0));
+  }
+  return best;
 }
 
 double triad_bytes_per_second() {

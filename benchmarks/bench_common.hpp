@@ -133,6 +133,14 @@ double triad_bytes_per_second();
 /// The same triad measured now, best of `passes` (for a floor next to a kernel
 /// on a machine whose load drifts).
 double measure_triad(int passes);
+/// The triad on every OpenMP thread, measured now, best of `passes`: the floor of
+/// kernels that themselves run on every thread.
+double measure_triad_all_threads(int passes);
+/// Double-precision FLOP/s of independent FMA chains in the widest vectors the
+/// build targets (AVX-512: 8 doubles, AVX2: 4, else scalar), on `threads` OpenMP
+/// threads, measured now (best of 3): the compute peak beside which kernels'
+/// executed FLOPs are quoted.
+double measure_fma_peak(int threads);
 
 // ---- records of finished runs (prediction, ranking) -------------------------
 

@@ -263,6 +263,32 @@ void PMultigridPreconditioner::vcycle(std::size_t l, const Eigen::VectorXd& b, E
 
 void PMultigridPreconditioner::apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const { vcycle(0, r, z); }
 
+// Per smoothed level with n unknowns (k = Chebyshev degree): the vcycle above
+// makes 2k passes over the single-precision matrix (pre-smoothing: k - 1 fused
+// steps and the final residual; post-smoothing: the residual and k - 1 steps),
+// each A.bytes() plus its operand x (8n); every pass also streams the vectors
+// of a fused step (res read and written 16n, D^-1 72 bytes per node = 24n, the
+// new direction 8n, z read and written 16n: 64n), and the two passes without a
+// product (each smoothing's first step) the same 64n. Transfers: R and P once
+// each (16 bytes per stored weight, 64-bit index and value, plus their 3-vector
+// operands and results). The order-1 level: one pass over its matrix in
+// compressed columns (16 bytes per nonzero), a lower bound for BoomerAMG's
+// V-cycle and CHOLMOD's two triangular solves alike.
+double PMultigridPreconditioner::bytes_per_apply() const {
+  const double k = options_.chebyshev_degree;
+  double bytes = 0.0;
+  for (size_t l = 0; l < levels_.size(); ++l) {
+    const Level& level = levels_[l];
+    const double n = static_cast<double>(level.smooth.rows());
+    bytes += 2.0 * k * (static_cast<double>(level.smooth.bytes()) + 8.0 * n) + (2.0 * k + 2.0) * 64.0 * n;
+    const NodeTransfer& t = hierarchy_->transfer(static_cast<int>(l));
+    const double weights = static_cast<double>(t.P.nonZeros() + t.R.nonZeros());
+    bytes += 16.0 * weights + 2.0 * 8.0 * (n + 3.0 * static_cast<double>(t.P.cols()));
+  }
+  bytes += 16.0 * 9.0 * static_cast<double>(coarse_.blocks());
+  return bytes;
+}
+
 std::unique_ptr<Preconditioner> make_p_multigrid_preconditioner() { return make_p_multigrid_preconditioner({}); }
 
 std::unique_ptr<Preconditioner> make_p_multigrid_preconditioner(const PMultigridOptions& options) {

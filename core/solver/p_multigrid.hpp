@@ -87,6 +87,10 @@ class PMultigridPreconditioner final : public Preconditioner {
   bool direct_coarse() const { return direct_coarse_; }
   /// Symbolic analyses of the order-1 operator by CHOLMOD so far (one per pattern).
   int coarse_analyses() const;
+  /// Bytes one apply() moves at least (the formula in p_multigrid.cpp), for
+  /// floor ratios: each smoothed level's single-precision products and vector
+  /// passes, the transfers, the order-1 level as one pass over its matrix.
+  double bytes_per_apply() const;
 
  private:
   struct Level {
