@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <map>
 #include <string>
@@ -43,6 +44,7 @@ struct TimeToErrorCase {
   int order = 2;
   int n = 4;
   std::string solver;   ///< "auto" or a make_linear_solver() name
+  bool scaling = false; ///< BM_Scaling: no reference error, no separate set-up timing
 };
 
 verification::MmsCase mms_case(const TimeToErrorCase& c) {
@@ -120,8 +122,27 @@ void BM_TimeToError(benchmark::State& state, const TimeToErrorCase& c) {
     }
     unknowns = static_cast<long>(problem.dofs().num_free());
     l2 = verification::mms_errors(p.mesh, p.ustar, problem.displacement()).l2;
+    if (c.scaling) continue;
     if (solver_setup == 0.0) solver_setup = time_solver_setup(problem, report.linear_solver);
     if (report.linear_solver == "cholmod") remember_reference(c, l2);  // a direct solve is the reference
+  }
+  if (c.scaling) {
+    const double per_unknown = static_cast<double>(unknowns);
+    state.counters["total_s"] = total;
+    state.counters["us_per_unknown"] = 1e6 * total / per_unknown;
+    state.counters["setup_s"] = report.setup_seconds;
+    state.counters["assembly_s"] = report.assembly_seconds;
+    state.counters["solve_s"] = report.solve_seconds;
+    state.counters["l2_error"] = l2;
+    state.counters["linear_iterations"] = report.linear_iterations;
+    state.counters["newton_iterations"] = report.newton_iterations;
+    state.counters["peak_mb"] = peak;
+    state.counters["peak_bytes_per_unknown"] = 1e6 * peak / per_unknown;
+    state.counters["unknowns"] = per_unknown;
+    state.counters["order"] = c.order;
+    state.counters["n"] = c.n;
+    state.SetLabel(fmt::format("{}|{}", c.problem, report.linear_solver));
+    return;
   }
   const double reference = reference_l2_error(c, unknowns, report.linear_solver);
   state.counters["total_s"] = total;
@@ -167,6 +188,21 @@ const bool registered = [] {
         ->Repetitions(3)
         ->ReportAggregatesOnly(true)
         ->Unit(benchmark::kSecond);
+  // BM_Scaling (scripts/scaling, opt-in: HOFEM_BENCH_SCALING=1): the linear cube
+  // on the default solver from ~1e5 to ~2e6 unknowns, one solve per size, for
+  // time, iterations and peak memory per unknown (P3 to n = 24, 1.07 M
+  // unknowns; P2 to n = 45, 2.1 M). Minutes and ~10 GB: not in the main job.
+  if (std::getenv("HOFEM_BENCH_SCALING")) {
+    std::vector<TimeToErrorCase> scaling;
+    for (int n : {8, 12, 16, 20, 24}) scaling.push_back({"linear", 3, n, "auto", true});
+    for (int n : {16, 24, 32, 40, 45}) scaling.push_back({"linear", 2, n, "auto", true});
+    for (const TimeToErrorCase& c : scaling)
+      benchmark::RegisterBenchmark(fmt::format("BM_Scaling/{}/p{}/n{}/{}", c.problem, c.order, c.n, c.solver).c_str(),
+                                   [c](benchmark::State& s) { BM_TimeToError(s, c); })
+          ->UseManualTime()
+          ->Iterations(1)
+          ->Unit(benchmark::kSecond);
+  }
   return true;
 }();
 

@@ -360,7 +360,69 @@ def plot_time_to_error(reports):
             print(f"| {problem} P{order} n={n} | {t:.3f} | {limit} | {'met' if t <= limit else 'NOT met'} |")
 
 
+def print_kernel_floors(bench):
+    """The machine floors of this run beside the kernels measured against them:
+    BM_ElementKernel (executed GFLOP/s over the FMA peak on as many threads) and
+    BM_PmgIteration (time over bytes at the all-thread triad; target <= 1.5)."""
+    med = bench_medians(bench)
+    rows = [(n, b) for n, (t, u, b) in med.items() if n.startswith(("BM_ElementKernel/", "BM_PmgIteration/", "BM_FmaPeak/"))]
+    if not rows:
+        return
+    print("\n| kernel | measured | floor | ratio |\n|---|---:|---:|---:|")
+    for name, b in sorted(rows):
+        if name.startswith("BM_FmaPeak/"):
+            print(f"| FMA peak, {int(b['threads'])} thread(s) | {b['GFLOPs']:.1f} GF/s | | |")
+        elif name.startswith("BM_ElementKernel/"):
+            # GFLOPs is a rate counter: (FLOPs / 1e9) per second of the benchmark's time
+            print(f"| element Hessian {b.get('label', name)} | {b['GFLOPs']:.1f} GF/s "
+                  f"| {b['fma_peak_GFLOPs']:.0f} GF/s | {b['GFLOPs'] / b['fma_peak_GFLOPs']:.1%} |")
+        else:
+            print(f"| {b.get('label', name)} | {b['real_time']:.1f} ms, {b['bytes'] / 1e6:.0f} MB "
+                  f"| {b['floor_seconds'] * 1e3:.1f} ms at {b['triad_all_threads_GBps']:.1f} GB/s | {b['floor_ratio']:.2f} |")
+
+
+def plot_scaling(path):
+    """reports/scaling.json (BM_Scaling, scripts/scaling): time, iterations and
+    peak memory per unknown against unknowns, the table, and the ratio of P3
+    n = 24's time per unknown to n = 12's (target <= 1.3)."""
+    med = bench_medians(load(path))
+    series = {}
+    for name, (t, unit, b) in med.items():
+        if not name.startswith("BM_Scaling/") or b.get("error_occurred"):
+            continue
+        _, problem, order, n, solver = name.split("/")[:5]
+        series.setdefault(int(order[1:]), []).append((int(n[1:]), b))
+    print("\n| order | n | unknowns | total s | us/unknown | CG its | peak MB | peak bytes/unknown |\n"
+          "|---|---:|---:|---:|---:|---:|---:|---:|")
+    fig, ax = plt.subplots(1, 2, figsize=(10, 4))
+    for order, pts in sorted(series.items()):
+        pts.sort()
+        for n, b in pts:
+            print(f"| P{order} | {n} | {b['unknowns']:.0f} | {b['total_s']:.2f} | {b['us_per_unknown']:.2f} "
+                  f"| {b['linear_iterations']:.0f} | {b['peak_mb']:.0f} | {b['peak_bytes_per_unknown']:.0f} |")
+        u = [b["unknowns"] for _, b in pts]
+        ax[0].semilogx(u, [b["us_per_unknown"] for _, b in pts], "o-", label=f"linear P{order}")
+        ax[1].semilogx(u, [b["peak_bytes_per_unknown"] / 1e3 for _, b in pts], "o-", label=f"linear P{order}")
+    ax[0].set_xlabel("free unknowns")
+    ax[0].set_ylabel("time to solution per unknown (us)")
+    ax[1].set_xlabel("free unknowns")
+    ax[1].set_ylabel("peak memory per unknown (kB)")
+    for a in ax:
+        a.grid(True, which="both", alpha=0.3)
+        a.legend()
+    fig.suptitle("Linear cube, CG + p-multigrid, 2 threads: cost per unknown with size")
+    fig.tight_layout()
+    fig.savefig(path.with_suffix(".png"), dpi=120)
+    p3 = {n: b for n, b in series.get(3, [])}
+    if 12 in p3 and 24 in p3:
+        ratio = p3[24]["us_per_unknown"] / p3[12]["us_per_unknown"]
+        print(f"\nP3 n=24 / n=12 time per unknown: {ratio:.2f} (target <= 1.3: {'met' if ratio <= 1.3 else 'NOT met'})")
+
+
 def main():
+    if len(sys.argv) > 2 and sys.argv[1] == "--scaling":
+        plot_scaling(Path(sys.argv[2]))
+        return
     reports = Path(sys.argv[1] if len(sys.argv) > 1 else "reports")
     report = load(reports / "verification.json")
     bench = load(reports / "benchmarks.json")
@@ -373,6 +435,7 @@ def main():
     plot_assembly(bench, reports / "benchmark_assembly.png")
     summary(report, bench)
     print_mms_table(report)
+    print_kernel_floors(bench)
     plot_time_to_error(reports)  # BM_TimeToError
     plot_sweep(reports)  # solver_benchmarks.json and solver_histories.json, if the sweep ran
     print(f"\nplots: {', '.join(sorted(p.name for p in reports.glob('*.png')))}")

@@ -228,7 +228,7 @@ double Assembler::gradient(const Material& mat, const Eigen::VectorXd& x, Eigen:
 double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g, SparseMatrix& K,
                           bool project) const {
   check_size(x, mesh_);
-  if (K.nonZeros() != pattern_->nonzeros() || K.rows() != pattern_->zero_matrix().rows()) pattern_->shape(K);
+  if (K.nonZeros() != pattern_->nonzeros() || K.rows() != pattern_->size()) pattern_->shape(K);
   else pattern_->zero_values(K);
   g.setZero(3 * mesh_.num_nodes());
   double* values = K.valuePtr();

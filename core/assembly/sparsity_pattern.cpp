@@ -86,16 +86,13 @@ SparsityPattern::SparsityPattern(const Mesh& mesh, const DofMap& dofs) {
   const std::int64_t nnz = col_ptr[nf];
   if (nnz > static_cast<std::int64_t>(std::numeric_limits<int>::max()))
     throw std::length_error(fmt::format("sparsity pattern: {} nonzeros exceed the 32-bit element map", nnz));
-  pattern_.resize(nf, nf);
-  pattern_.resizeNonZeros(static_cast<Eigen::Index>(nnz));  // uninitialised: filled below
-  std::copy(col_ptr.begin(), col_ptr.end(), pattern_.outerIndexPtr());
-  std::int64_t* rows = pattern_.innerIndexPtr();
-  double* values = pattern_.valuePtr();
+  column_start_ = std::move(col_ptr);
+  row_.resize(static_cast<size_t>(nnz));  // uninitialised: filled below, on the threads that read it later
 #pragma omp parallel for schedule(static) if (parallel)
   for (int c = 0; c < nf; ++c) {
-    std::int64_t q = col_ptr[c];
+    std::int64_t q = column_start_[c];
     for (int m : neighbours[dofs.free_dofs()[c] / 3])
-      for (int a = 0; a < 3; ++a) values[q] = 0.0, rows[q++] = dofs.free_index(3 * m + a);
+      for (int a = 0; a < 3; ++a) row_[q++] = dofs.free_index(3 * m + a);
   }
 
   // Node-pair map (done once).
@@ -111,7 +108,7 @@ SparsityPattern::SparsityPattern(const Mesh& mesh, const DofMap& dofs) {
         continue;
       }
       const std::vector<int>& nb = neighbours[node_j];
-      const std::int64_t first = col_ptr[dofs.free_index(3 * node_j)];
+      const std::int64_t first = column_start_[dofs.free_index(3 * node_j)];
       for (int i = 0; i < n; ++i) {
         const int node_i = mesh.elements(i, e);
         mj[i] = free_node(node_i)
@@ -123,18 +120,24 @@ SparsityPattern::SparsityPattern(const Mesh& mesh, const DofMap& dofs) {
   colours_ = colour_elements(mesh, start, elements_of_node);
 }
 
+SparseMatrix SparsityPattern::zero_matrix() const {
+  SparseMatrix K;
+  shape(K);
+  return K;
+}
+
 void SparsityPattern::shape(SparseMatrix& K) const {
-  const Eigen::Index n = pattern_.rows();
-  const std::int64_t nnz = pattern_.nonZeros();
-  K.resize(n, pattern_.cols());
+  const Eigen::Index n = size();
+  const std::int64_t nnz = nonzeros();
+  K.resize(n, n);
   K.resizeNonZeros(nnz);  // uninitialised arrays: the loops below touch them first
-  std::copy(pattern_.outerIndexPtr(), pattern_.outerIndexPtr() + n + 1, K.outerIndexPtr());
-  const auto* inner = pattern_.innerIndexPtr();
+  std::copy(column_start_.begin(), column_start_.end(), K.outerIndexPtr());
+  const std::int32_t* rows = row_.data();
   auto* k_inner = K.innerIndexPtr();
   double* values = K.valuePtr();
 #pragma omp parallel for schedule(static)
   for (std::int64_t q = 0; q < nnz; ++q) {
-    k_inner[q] = inner[q];
+    k_inner[q] = rows[q];
     values[q] = 0.0;
   }
 }
