@@ -4,6 +4,7 @@
 #include "quadrature/rule_library.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <exception>
 #include <mutex>
@@ -67,17 +68,71 @@ void for_each_element(const Mesh& mesh, const SparsityPattern& pattern, Body&& b
   }
 }
 
+// Runs body(ws, e, owns) for every element with a node the calling thread
+// owns (owns(node) says which): thread t of T owns the nodes whose first
+// element (SparsityPattern::first_element) lies in its element range
+// [t ne / T, (t + 1) ne / T), and visits elements in ascending order from the
+// start of that range. The body writes only what belongs to owned nodes (matrix
+// columns, force entries), so threads never write the same entry, and every
+// entry receives its element contributions in ascending element order whatever
+// the thread count (bitwise reproducible). Against colouring, consecutive
+// elements share nodes, so the scatter's writes hit columns still in cache
+// (elements of one colour share none: every colour swept the whole value
+// array). An element with nodes of two owners is computed by both (the layer
+// along a range boundary). Errors as for_each_element.
+template <int N, class Body>
+void for_each_element_by_columns(const Mesh& mesh, const SparsityPattern& pattern, Body&& body) {
+  std::exception_ptr error;
+  int error_element = -1;
+  std::mutex error_mutex;
+  const int n = mesh.nodes_per_element(), ne = mesh.num_elements();
+#pragma omp parallel if (ne >= kMinParallelElements)
+  {
+    ElementWorkspace<N> ws(n);
+    const int t = omp_get_thread_num(), T = omp_get_num_threads();
+    const int begin = static_cast<int>(static_cast<std::int64_t>(ne) * t / T);
+    const int end = static_cast<int>(static_cast<std::int64_t>(ne) * (t + 1) / T);
+    auto owns = [&](int node) {
+      const int f = pattern.first_element(node);
+      return f >= begin && f < end;
+    };
+    for (int e = begin; e < ne; ++e) {
+      bool mine = false;
+      for (int i = 0; i < n && !mine; ++i) mine = owns(mesh.elements(i, e));
+      if (!mine) continue;
+      try {
+        body(ws, e, owns);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error || e < error_element) error = std::current_exception(), error_element = e;
+        break;  // later elements of this range would fail or be discarded alike
+      }
+    }
+  }
+  if (error) {
+    try {
+      std::rethrow_exception(error);
+    } catch (const ElementGeometryError& ex) {
+      throw ElementGeometryError(fmt::format("element {}: {}", error_element, ex.what()));
+    } catch (const MaterialDomainError& ex) {
+      throw MaterialDomainError(fmt::format("element {}: {}", error_element, ex.what()));
+    }
+  }
+}
+
 // Adds element e's block H (3n x 3n, column-major) into the value array of a
 // matrix with the pattern's structure: per node pair one stored position, the 3x3
 // block's columns at steps of node j's column length, each column's 3 entries
-// consecutive (SparsityPattern). Elements of one colour share no node, so
-// concurrent calls write disjoint entries.
-template <class Block>
-void scatter_block(const SparsityPattern& pattern, const Mesh& mesh, int e, const Block& H, double* values) {
+// consecutive (SparsityPattern).
+// Only the columns of nodes with owns(node).
+template <class Block, class Owns>
+void scatter_block(const SparsityPattern& pattern, const Mesh& mesh, int e, const Block& H, double* values, Owns&& owns) {
   const int n = pattern.nodes_per_element();
   const int* map = pattern.element_map(e);
   for (int j = 0; j < n; ++j) {
-    const int stride = pattern.column_length(mesh.elements(j, e));
+    const int node_j = mesh.elements(j, e);
+    if (!owns(node_j)) continue;
+    const int stride = pattern.column_length(node_j);
     const int* mj = map + j * n;
     for (int b = 0; b < 3; ++b) {
       const double* h = H.data() + static_cast<std::ptrdiff_t>(3 * j + b) * H.rows();  // column 3j + b of H
@@ -235,11 +290,13 @@ double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::
   std::vector<double> per_element(mesh_.num_elements());
   dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
     constexpr int N = decltype(n)::value;
-    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+    for_each_element_by_columns<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e, const auto& owns) {
       gather(mesh_, x.data(), e, ws);
-      per_element[e] = element_hessian(mat, tabulation_of(e), weights_of(e), ws, project && !mat.constant_tangent());
-      for (int i = 0; i < ws.nodes(); ++i) g.segment<3>(3 * mesh_.elements(i, e)) += ws.g.template segment<3>(3 * i);
-      scatter_block(*pattern_, mesh_, e, ws.H, values);
+      const double energy = element_hessian(mat, tabulation_of(e), weights_of(e), ws, project && !mat.constant_tangent());
+      if (owns(mesh_.elements(0, e))) per_element[e] = energy;  // one writer per element
+      for (int i = 0; i < ws.nodes(); ++i)
+        if (const int node = mesh_.elements(i, e); owns(node)) g.segment<3>(3 * node) += ws.g.template segment<3>(3 * i);
+      scatter_block(*pattern_, mesh_, e, ws.H, values, owns);
     });
   });
   double total = 0.0;

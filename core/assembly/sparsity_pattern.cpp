@@ -80,6 +80,9 @@ SparsityPattern::SparsityPattern(const Mesh& mesh, const DofMap& dofs) {
   }
   column_length_.assign(static_cast<size_t>(nn), 0);
   for (int k = 0; k < nn; ++k) column_length_[k] = 3 * static_cast<int>(neighbours[k].size());
+  first_element_.assign(static_cast<size_t>(nn), ne);  // ne: a node of no element
+  for (int k = 0; k < nn; ++k)
+    if (start[k + 1] > start[k]) first_element_[k] = elements_of_node[start[k]];  // filled in element order
   // Columns: free DOF c = 3 * free node + b.
   std::vector<std::int64_t> col_ptr(static_cast<size_t>(nf) + 1, 0);
   for (int c = 0; c < nf; ++c) col_ptr[c + 1] = col_ptr[c] + column_length_[dofs.free_dofs()[c] / 3];

@@ -15,6 +15,7 @@
 #include "assembly/sparse_matrix.hpp"
 #include "mesh/mesh.hpp"
 
+#include <utility>
 #include <vector>
 
 namespace hofem {
@@ -43,6 +44,10 @@ class SparsityPattern {
   /// included); 0 for a constrained node. Indexed by mesh node.
   int column_length(int node) const { return column_length_[node]; }
   int nodes_per_element() const { return nodes_; }
+  /// The lowest-numbered element containing each node: assembly by column
+  /// ownership (Assembler::hessian) gives part t of T the nodes whose first
+  /// element lies in its element range [t ne / T, (t + 1) ne / T).
+  int first_element(int node) const { return first_element_[node]; }
   /// Element ids grouped by colour.
   const std::vector<std::vector<int>>& colours() const { return colours_; }
   std::int64_t nonzeros() const { return static_cast<std::int64_t>(row_.size()); }
@@ -57,6 +62,7 @@ class SparsityPattern {
   std::vector<std::int32_t, UninitializedAllocator<std::int32_t>> row_;
   std::vector<int> map_;
   std::vector<int> column_length_;
+  std::vector<int> first_element_;
   int nodes_ = 0;
   size_t block_size_ = 0;
   std::vector<std::vector<int>> colours_;
