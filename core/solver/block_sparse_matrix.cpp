@@ -60,11 +60,66 @@ std::int64_t node_structured_blocks(const SparseMatrix& A, Eigen::Index i) {
 
 }  // namespace
 
+// Structure and values in one pass over A when every block row is node-structured
+// (every matrix SparsityPattern makes): the columns' lengths say the block counts,
+// and each row's indices are read once, checked and turned into block columns
+// while its values are copied. Any other matrix (or a row that fails the check)
+// takes the general path: merged block columns, then set_values().
 template <class T>
 BlockSparseMatrix<T>::BlockSparseMatrix(const SparseMatrix& A) {
   if (A.rows() != A.cols() || !A.isCompressed() || A.rows() % 3 != 0)
     throw std::invalid_argument(fmt::format("BlockSparseMatrix: needs a compressed square matrix of size 3k, got {}x{}{}",
                                             A.rows(), A.cols(), A.isCompressed() ? "" : " (not compressed)"));
+  const Eigen::Index nb = A.rows() / 3;
+  const std::int64_t* outer = A.outerIndexPtr();
+  const std::int64_t* inner = A.innerIndexPtr();
+  const double* val = A.valuePtr();
+  bool lengths_structured = true;
+  std::int64_t total = 0;
+  for (Eigen::Index i = 0; i < nb && lengths_structured; ++i) {
+    const std::int64_t length = outer[3 * i + 1] - outer[3 * i];
+    lengths_structured = length % 3 == 0 && outer[3 * i + 2] - outer[3 * i + 1] == length &&
+                         outer[3 * i + 3] - outer[3 * i + 2] == length;
+    total += length / 3;
+  }
+  if (!lengths_structured || total > std::numeric_limits<std::int32_t>::max()) {
+    build_general(A);
+    return;
+  }
+  row_start_.resize(static_cast<size_t>(nb) + 1);
+  row_start_[0] = 0;
+  for (Eigen::Index i = 0; i < nb; ++i)
+    row_start_[i + 1] = row_start_[i] + static_cast<std::int32_t>((outer[3 * i + 1] - outer[3 * i]) / 3);
+  column_.resize(static_cast<size_t>(total));
+  diagonal_.assign(static_cast<size_t>(nb), -1);
+  value_.resize(9 * column_.size() + kPadding);  // uninitialised: every block is written below
+  std::fill(value_.end() - kPadding, value_.end(), T(0));
+  parallel_ = blocks() >= kParallelBlocks;
+  source_nonzeros_ = A.nonZeros();
+  bool structured = true;
+#pragma omp parallel for schedule(static) reduction(&& : structured) if (parallel_)
+  for (Eigen::Index i = 0; i < nb; ++i) {
+    const std::int64_t* first = inner + outer[3 * i];
+    for (std::int32_t k = row_start_[i], t = 0; k < row_start_[i + 1]; ++k, t += 3) {
+      const std::int64_t r = first[t];
+      structured = structured && r % 3 == 0;
+      column_[k] = static_cast<std::int32_t>(r / 3);
+      if (r / 3 == i) diagonal_[i] = k;
+      T* v = value_.data() + 9 * static_cast<std::int64_t>(k);
+      for (int a = 0; a < 3; ++a) {  // column 3i + a of A is row 3i + a (symmetric): entry (a, c) of the block
+        const std::int64_t q = outer[3 * i + a] + t;
+        for (int c = 0; c < 3; ++c) {
+          structured = structured && inner[q + c] == r + c;
+          v[3 * c + a] = static_cast<T>(val[q + c]);
+        }
+      }
+    }
+  }
+  if (!structured) build_general(A);
+}
+
+template <class T>
+void BlockSparseMatrix<T>::build_general(const SparseMatrix& A) {
   const Eigen::Index nb = A.rows() / 3;
   std::vector<std::int64_t> count(static_cast<size_t>(nb) + 1, 0);
   const bool parallel = A.nonZeros() >= 9 * kParallelBlocks;

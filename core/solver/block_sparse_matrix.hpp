@@ -72,6 +72,10 @@ class BlockSparseMatrix {
   Eigen::Matrix3d diagonal_block(Eigen::Index i) const;
   /// Whether products run in parallel (enough work to pay for a parallel region).
   bool parallel() const { return parallel_; }
+  /// pattern_fingerprint() of the matrix this was built from, when its builder
+  /// recorded it (0 otherwise): a consumer of the block copy need not hash again.
+  std::uint64_t source_fingerprint() const { return source_fingerprint_; }
+  void set_source_fingerprint(std::uint64_t f) { source_fingerprint_ = f; }
 
  private:
   std::vector<std::int32_t> row_start_{0};  ///< block row i: blocks row_start_[i] .. row_start_[i+1]-1
@@ -81,11 +85,13 @@ class BlockSparseMatrix {
   /// values, so a 4-wide load takes it whole), plus padding for the last load.
   std::vector<T, UninitializedAllocator<T>> value_;
   std::int64_t source_nonzeros_ = 0;        ///< nonzeros of the matrix it was built from
+  std::uint64_t source_fingerprint_ = 0;
   bool parallel_ = false;
 
   template <class U>
   friend class BlockSparseMatrix;
   void finish_structure();  // diagonal_, parallel_ from row_start_ and column_
+  void build_general(const SparseMatrix& A);  // structure by merging columns, then set_values()
 };
 
 template <class T>

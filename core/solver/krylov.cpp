@@ -293,6 +293,7 @@ bool KrylovSolver::factorize(const SparseMatrix& A) {
     const std::uint64_t pattern = pattern_fingerprint(A);
     if (pattern != block_pattern_ || block_.rows() != A.rows()) {
       block_ = BlockSparseMatrix<double>(A);
+      block_.set_source_fingerprint(pattern);
       block_pattern_ = pattern;
     } else {
       block_.set_values(A);

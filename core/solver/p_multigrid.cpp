@@ -80,7 +80,8 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseM
   }
   // The fine level's operator: the caller's block copy, or a copy of our own.
   fine_blocks_ = blocks;
-  const std::uint64_t hash = pattern_fingerprint(A);
+  // The caller's block copy carries A's fingerprint when its builder hashed A already.
+  const std::uint64_t hash = blocks && blocks->source_fingerprint() != 0 ? blocks->source_fingerprint() : pattern_fingerprint(A);
   if (hash != pattern_hash_) {
     levels_[0].exact = blocks ? BlockSparseMatrix<double>() : BlockSparseMatrix<double>(A);
     for (size_t l = 0; l < levels_.size(); ++l) {
