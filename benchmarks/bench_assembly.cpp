@@ -121,7 +121,7 @@ void element_kernel_loop(const Setup& s, const Material& mat, double& sink) {
         ws.X.col(i) = mesh.nodes.col(node);
         ws.x.col(i) = s.x.segment<3>(3 * node);
       }
-      total += element_hessian(mat, tab, w, ws, false) + ws.H(1, 2);
+      total += element_hessian(mat, tab, w, ws, false) + ws.hessian_entry(0, 1, 0, 2);
     }
   }
   sink += total;

@@ -120,13 +120,13 @@ void for_each_element_by_columns(const Mesh& mesh, const SparsityPattern& patter
   }
 }
 
-// Adds element e's block H (3n x 3n, column-major) into the value array of a
-// matrix with the pattern's structure: per node pair one stored position, the 3x3
+// Adds element e's Hessian (ws.hessian_entry) into the value array of a matrix
+// with the pattern's structure: per node pair one stored position, the 3x3
 // block's columns at steps of node j's column length, each column's 3 entries
-// consecutive (SparsityPattern).
-// Only the columns of nodes with owns(node).
-template <class Block, class Owns>
-void scatter_block(const SparsityPattern& pattern, const Mesh& mesh, int e, const Block& H, double* values, Owns&& owns) {
+// consecutive (SparsityPattern). Only the columns of nodes with owns(node).
+template <class Workspace, class Owns>
+void scatter_hessian(const SparsityPattern& pattern, const Mesh& mesh, int e, const Workspace& ws, double* values,
+                     Owns&& owns) {
   const int n = pattern.nodes_per_element();
   const int* map = pattern.element_map(e);
   for (int j = 0; j < n; ++j) {
@@ -135,13 +135,12 @@ void scatter_block(const SparsityPattern& pattern, const Mesh& mesh, int e, cons
     const int stride = pattern.column_length(node_j);
     const int* mj = map + j * n;
     for (int b = 0; b < 3; ++b) {
-      const double* h = H.data() + static_cast<std::ptrdiff_t>(3 * j + b) * H.rows();  // column 3j + b of H
       double* column = values + static_cast<std::ptrdiff_t>(b) * stride;
       for (int i = 0; i < n; ++i)
         if (const int pos = mj[i]; pos >= 0) {
-          column[pos] += h[3 * i];
-          column[pos + 1] += h[3 * i + 1];
-          column[pos + 2] += h[3 * i + 2];
+          column[pos] += ws.hessian_entry(i, 0, j, b);
+          column[pos + 1] += ws.hessian_entry(i, 1, j, b);
+          column[pos + 2] += ws.hessian_entry(i, 2, j, b);
         }
     }
   }
@@ -296,7 +295,7 @@ double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::
       if (owns(mesh_.elements(0, e))) per_element[e] = energy;  // one writer per element
       for (int i = 0; i < ws.nodes(); ++i)
         if (const int node = mesh_.elements(i, e); owns(node)) g.segment<3>(3 * node) += ws.g.template segment<3>(3 * i);
-      scatter_block(*pattern_, mesh_, e, ws.H, values, owns);
+      scatter_hessian(*pattern_, mesh_, e, ws, values, owns);
     });
   });
   double total = 0.0;

@@ -36,12 +36,10 @@ struct ElementWorkspace {
   using Nodes = Eigen::Matrix<double, 3, N>;
   using Grad = Eigen::Matrix<double, N, 3>;
   using Vec = Eigen::Matrix<double, D, 1>;
-  using Mat = Eigen::Matrix<double, D, D>;
 
   Nodes X, x;
   Grad dNdX;
   Vec g;
-  Mat H;
   // element_hessian's operands over all quadrature points (sized on the first
   // element with more points than before: the element loop does not allocate):
   // E (ld x 3Q: the six blocks a <= b of w_q D_q A_q^{ab}, stacked, ld = 6n
@@ -54,27 +52,61 @@ struct ElementWorkspace {
       x.resize(3, n);
       dNdX.resize(n, 3);
       g.resize(3 * n);
-      H.resize(3 * n, 3 * n);
     }
     (void)n;
   }
   int nodes() const { return static_cast<int>(X.cols()); }
+
+  /// Entry (3i + a, 3j + b) of the element Hessian element_hessian() computed:
+  /// H^{ab}_ij from block s(a, b) of Hs at (i, j) for a < b, from block s(b, a)
+  /// at (j, i) for a > b, and from the upper triangle of block s(a, a) for a = b.
+  /// Every entry and its mirror come from the same computed value: the element
+  /// Hessian is exactly symmetric (CHOLMOD reads one triangle, the block
+  /// products assume symmetry). Read directly by the scatter: no 3n x 3n copy.
+  double hessian_entry(int i, int a, int j, int b) const {
+    static constexpr int kBlock[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
+    const int n = nodes();
+    const bool upper = a < b || (a == b && i <= j);
+    return upper ? Hs(kBlock[a][b] * n + i, j) : Hs(kBlock[a][b] * n + j, i);
+  }
 };
 
-/// dN/dX and w |det J| at quadrature point q; throws ElementGeometryError if det J <= 0.
+/// dN/dX (into dNdX) and w |det J| at quadrature point q from the reference node
+/// coordinates as rows (Xt, n x 3); throws ElementGeometryError if det J <= 0.
+/// J = X dN/dxi is formed as Xt^T dN/dxi: each entry a dot product of two
+/// contiguous columns, which vectorises, where X's rows are strided.
 template <int N>
-double reference_gradients(const BasisTabulation& tab, const Eigen::VectorXd& weights, int q, ElementWorkspace<N>& ws) {
+double reference_gradients_from(const BasisTabulation& tab, const Eigen::VectorXd& weights, int q,
+                                const typename ElementWorkspace<N>::Grad& Xt, typename ElementWorkspace<N>::Grad& dNdX) {
   // n x 3, as a fixed-size map where n is a compile-time constant: Eigen then
   // inlines the small products instead of calling its general GEMM.
   const Eigen::Map<const typename ElementWorkspace<N>::Grad> dNdxi(tab.gradients.data() + 3 * q * tab.gradients.rows(),
                                                                    tab.gradients.rows(), 3);
   // lazyProduct: Eigen sends products with rows + cols + depth >= 20 (Tet20,
   // Hex20: 3 + 3 + 20) to its general GEMM, ~10x slower at these sizes.
-  const Eigen::Matrix3d J = ws.X.lazyProduct(dNdxi);
+  const Eigen::Matrix3d J = Xt.transpose().lazyProduct(dNdxi);
   const double det = J.determinant();
   if (!(det > 0.0)) throw ElementGeometryError("inverted or degenerate element (det J = " + std::to_string(det) + ")");
-  ws.dNdX.noalias() = dNdxi.lazyProduct(J.inverse());
+  dNdX.noalias() = dNdxi.lazyProduct(J.inverse());
   return weights[q] * det;
+}
+
+/// dN/dX (into ws.dNdX) and w |det J| at quadrature point q; throws
+/// ElementGeometryError if det J <= 0.
+template <int N>
+double reference_gradients(const BasisTabulation& tab, const Eigen::VectorXd& weights, int q, ElementWorkspace<N>& ws) {
+  if constexpr (N == Eigen::Dynamic) {
+    const Eigen::Map<const Eigen::MatrixXd> dNdxi(tab.gradients.data() + 3 * q * tab.gradients.rows(),
+                                                  tab.gradients.rows(), 3);
+    const Eigen::Matrix3d J = ws.X * dNdxi;
+    const double det = J.determinant();
+    if (!(det > 0.0)) throw ElementGeometryError("inverted or degenerate element (det J = " + std::to_string(det) + ")");
+    ws.dNdX.noalias() = dNdxi * J.inverse();
+    return weights[q] * det;
+  } else {
+    const typename ElementWorkspace<N>::Grad Xt = ws.X.transpose();
+    return reference_gradients_from<N>(tab, weights, q, Xt, ws.dNdX);
+  }
 }
 
 template <int N>
@@ -117,7 +149,7 @@ inline double element_hessian_flops(int n, int points) {
   return static_cast<double>(points) * (180.0 * n + 60.0 + 36.0 * n * n);
 }
 
-/// Fills ws.g and ws.H (full symmetric); returns the element energy. With
+/// Fills ws.g and ws.Hs (the Hessian's entries: ws.hessian_entry); returns the element energy. With
 /// project_psd, dP/dF is projected to positive semi-definite at each point.
 ///
 /// Component block (a, b) of the Hessian, H^{ab}_ij = H(3i + a, 3j + b), is
@@ -139,9 +171,11 @@ double element_hessian(const Material& mat, const BasisTabulation& tab, const Ei
   }
   ws.g.setZero();
   double e = 0.0;
+  // Node coordinates as rows (n x 3): J and F become dot products of contiguous columns.
+  const typename ElementWorkspace<N>::Grad Xt = ws.X.transpose(), xt = ws.x.transpose();
   for (int q = 0; q < Q; ++q) {
-    const double wq = reference_gradients(tab, w, q, ws);
-    const Mat3 F = ws.x.lazyProduct(ws.dNdX);
+    const double wq = reference_gradients_from<N>(tab, w, q, Xt, ws.dNdX);
+    const Mat3 F = xt.transpose().lazyProduct(ws.dNdX);
     Mat3 P;
     Mat9 A;
     e += wq * mat.evaluate(F, &P, &A);  // psi, P and dP/dF from one evaluation
@@ -164,23 +198,6 @@ double element_hessian(const Material& mat, const BasisTabulation& tab, const Ei
     }
   }
   hessian_product(ws.E.data(), ld, 3 * Q, ws.Gt.data(), static_cast<int>(ws.Gt.rows()), n, ws.Hs.data());
-  // H(3i + a, 3j + b) = H^{ab}_ij, written column by column (contiguous stores):
-  // for a < b from block s(a, b) at (i, j), for a > b from block s(b, a) at
-  // (j, i); for a = b from the upper triangle of block s(a, a). Every entry and
-  // its mirror then come from the same computed value: H is exactly symmetric
-  // (CHOLMOD reads one triangle, the block products assume symmetry).
-  constexpr int kBlock[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}};
-  for (int j = 0; j < n; ++j)
-    for (int b = 0; b < 3; ++b) {
-      double* column = ws.H.data() + static_cast<std::ptrdiff_t>(3 * j + b) * 3 * n;
-      const double* Hs = ws.Hs.data();
-      for (int i = 0; i < n; ++i)
-        for (int a = 0; a < 3; ++a) {
-          const bool upper = a < b || (a == b && i <= j);
-          column[3 * i + a] = upper ? Hs[static_cast<std::ptrdiff_t>(j) * ld + kBlock[a][b] * n + i]
-                                    : Hs[static_cast<std::ptrdiff_t>(i) * ld + kBlock[a][b] * n + j];
-        }
-    }
   return e;
 }
 
