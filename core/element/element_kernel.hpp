@@ -39,6 +39,7 @@ struct ElementWorkspace {
 
   Nodes X, x;
   Grad dNdX;
+  Grad Xt, xt, gt;  // element_hessian: X, x and the forces as rows (n x 3)
   Vec g;
   // element_hessian's operands over all quadrature points (sized on the first
   // element with more points than before: the element loop does not allocate):
@@ -51,6 +52,9 @@ struct ElementWorkspace {
       X.resize(3, n);
       x.resize(3, n);
       dNdX.resize(n, 3);
+      Xt.resize(n, 3);
+      xt.resize(n, 3);
+      gt.resize(n, 3);
       g.resize(3 * n);
     }
     (void)n;
@@ -172,7 +176,11 @@ double element_hessian(const Material& mat, const BasisTabulation& tab, const Ei
   ws.g.setZero();
   double e = 0.0;
   // Node coordinates as rows (n x 3): J and F become dot products of contiguous columns.
-  const typename ElementWorkspace<N>::Grad Xt = ws.X.transpose(), xt = ws.x.transpose();
+  ws.Xt = ws.X.transpose();
+  ws.xt = ws.x.transpose();
+  ws.gt.setZero();
+  const auto& Xt = ws.Xt;
+  const auto& xt = ws.xt;
   for (int q = 0; q < Q; ++q) {
     const double wq = reference_gradients_from<N>(tab, w, q, Xt, ws.dNdX);
     const Mat3 F = xt.transpose().lazyProduct(ws.dNdX);
@@ -180,8 +188,8 @@ double element_hessian(const Material& mat, const BasisTabulation& tab, const Ei
     Mat9 A;
     e += wq * mat.evaluate(F, &P, &A);  // psi, P and dP/dF from one evaluation
     if (project_psd_at_points) A = project_psd(A);
-    const Mat3 wP = wq * P;
-    for (int i = 0; i < n; ++i) ws.g.template segment<3>(3 * i).noalias() += wP * ws.dNdX.row(i).transpose();
+    // Internal forces as rows (n x 3: gt.row(i) = (w P grad N_i)^T), by columns of dN/dX: vectorised over nodes.
+    ws.gt.noalias() += ws.dNdX.lazyProduct((wq * P).transpose());
     // Fixed-size views where n is a compile-time constant (Eigen inlines the
     // small products instead of calling its general GEMM).
     using Stride = Eigen::OuterStride<>;
@@ -197,6 +205,7 @@ double element_hessian(const Material& mat, const BasisTabulation& tab, const Ei
           .noalias() = ws.dNdX.lazyProduct(Aab);
     }
   }
+  for (int i = 0; i < n; ++i) ws.g.template segment<3>(3 * i) = ws.gt.row(i).transpose();
   hessian_product(ws.E.data(), ld, 3 * Q, ws.Gt.data(), static_cast<int>(ws.Gt.rows()), n, ws.Hs.data());
   return e;
 }
