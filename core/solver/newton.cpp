@@ -26,6 +26,53 @@ double mean_abs_diagonal(const SparseMatrix& K) {
   return K.rows() > 0 ? sum / static_cast<double>(K.rows()) : 1.0;
 }
 
+constexpr double kDescentCosine = 1e-12;
+
+bool is_descent(const NonlinearProblem& problem, const Eigen::VectorXd& g, const Eigen::VectorXd& d) {
+  const double slope = problem.dot(g, d);
+  return std::isfinite(slope) && slope < 0.0 && slope <= -kDescentCosine * problem.norm(g) * problem.norm(d);
+}
+
+// The fallback chain of newton_minimize when the solver's direction is not a
+// descent direction: projected Hessian, shifts growing tenfold from 1e-8 of the
+// mean diagonal (up to 12), then d = -g scaled by the mean diagonal's inverse.
+void descent_fallback(NonlinearProblem& problem, const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K,
+                      Eigen::VectorXd& d, LinearSolver& solver, bool& project, double& shift, NewtonIteration& rec) {
+  auto try_solve = [&]() {
+    try {
+      if (!solver.factorize(K)) return false;
+      solver.solve(-g, d);
+    } catch (const std::runtime_error&) {
+      return false;
+    }
+    return is_descent(problem, g, d);
+  };
+  if (!project) {
+    project = true;
+    shift = 0.0;
+    problem.hessian(u, g, K, true);
+    rec.projected = true;
+    if (try_solve()) {
+      rec.direction = "projected";
+      return;
+    }
+  }
+  const double base = mean_abs_diagonal(K);
+  for (int k = 0; k < 12; ++k) {
+    const double s = (shift == 0.0 ? 1e-8 * base : 10.0 * shift);
+    shift_diagonal(K, s - shift);
+    shift = s;
+    if (try_solve()) {
+      rec.shift = shift;
+      rec.direction = "shifted";
+      return;
+    }
+  }
+  rec.shift = shift;
+  rec.direction = "gradient";
+  d = -g / (base > 0.0 ? base : 1.0);
+}
+
 // Forcing term of Eisenstat & Walker (1996), choice 2, with their safeguard
 // (do not drop faster than gamma eta_prev^alpha while that is above 0.1) and
 // Kelley's (1995) floor: no point solving much below what the Newton stopping
@@ -130,6 +177,16 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
       return result;
     }
     g_prev = rec.residual;
+    // Sufficient descent, g.d <= -c |g| |d|: an indefinite-capable solver (CR,
+    // MINRES, GMRES, UMFPACK, LDL^T) returns an ascent direction on an indefinite
+    // Hessian, and with a positive slope the Armijo test below would admit an
+    // energy increase. c = 1e-12 lies below 1/cond(K) for any Hessian this code
+    // factorises, so a true Newton direction on a positive definite Hessian
+    // (cos angle >= 1/cond) always passes. Otherwise fall back, as trust-region
+    // free Newton codes do: the projected Hessian, then growing diagonal shifts,
+    // then the gradient; the iteration records which.
+    rec.direction = shift > 0.0 ? "shifted" : project ? "projected" : "newton";
+    if (!is_descent(problem, g, d)) descent_fallback(problem, u, g, K, d, solver, project, shift, rec);
     const double slope = problem.dot(g, d);
     // Backtracking Armijo line search. Near convergence the energy decrease drops
     // below the rounding of E itself; a step that changes E by no more than that

@@ -63,6 +63,10 @@ struct NewtonIteration {
   double step = 0.0;      ///< accepted line-search step length
   bool projected = false;
   double shift = 0.0;     ///< diagonal shift used (0 if none)
+  /// How the step direction was obtained: "newton" (the Hessian as assembled),
+  /// "projected" (PSD-projected Hessian), "shifted" (a diagonal shift added) or
+  /// "gradient" (steepest descent, when no Hessian gave a descent direction).
+  std::string direction = "newton";
   double linear_rtol = 0.0;   ///< forcing term asked of an iterative solver (0: direct)
   int linear_iterations = 0;  ///< iterations of an iterative solver (0: direct)
 };
