@@ -1,5 +1,7 @@
 #include "solver/preconditioner.hpp"
 
+#include "solver/incomplete_cholesky.hpp"
+
 #include "solver/additive_schwarz.hpp"
 #include "solver/boomeramg.hpp"
 #include "solver/p_multigrid.hpp"
@@ -81,17 +83,37 @@ class BlockJacobiPreconditioner final : public Preconditioner {
   Eigen::VectorXd tail_;
 };
 
-// IC(0) through Eigen's IncompleteCholesky, which already retries with a growing
-// diagonal shift when a pivot breaks down (thesis Alg. 2 plus the standard
-// Manteuffel shift). Natural ordering: Eigen's default AMD ordering gives ~2x more
-// CG iterations on 3D elasticity (shared/machine.md).
-class IncompleteCholeskyPreconditioner final : public Preconditioner {
+// IC(0) of the thesis' Algorithm 2: zero fill on A's pattern
+// (solver/incomplete_cholesky.hpp, with its breakdown rule).
+class IncompleteCholesky0Preconditioner final : public Preconditioner {
  public:
   std::string_view name() const override { return "ic0"; }
   bool setup(const SparseMatrix& A) override {
+    if (!ic_.compute(A)) {
+      error_ = "ic0: a pivot stayed non-positive after 20 diagonal shifts";
+      return false;
+    }
+    return true;
+  }
+  void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const override { ic_.solve(r, z); }
+
+ private:
+  IncompleteCholesky0 ic_;
+};
+
+// Eigen's IncompleteCholesky, under its own name: Lin and More's memory-limited
+// incomplete Cholesky (the largest entries per column kept, with scaling and a
+// growing shift on breakdown), not IC(0); until 2026-12 this was what "ic0"
+// named, so earlier sweep results under "ic0" are this one. Natural ordering:
+// Eigen's default AMD ordering gives ~2x more CG iterations on 3D elasticity
+// (shared/machine.md).
+class EigenIncompleteCholeskyPreconditioner final : public Preconditioner {
+ public:
+  std::string_view name() const override { return "eigen-ict"; }
+  bool setup(const SparseMatrix& A) override {
     ic_.compute(A);
     if (ic_.info() != Eigen::Success) {
-      error_ = "ic0: factorisation failed";
+      error_ = "eigen-ict: factorisation failed";
       return false;
     }
     return true;
@@ -105,7 +127,7 @@ class IncompleteCholeskyPreconditioner final : public Preconditioner {
 }  // namespace
 
 std::vector<std::string> preconditioner_names() {
-  std::vector<std::string> names{"none", "jacobi", "block-jacobi", "ic0"};
+  std::vector<std::string> names{"none", "jacobi", "block-jacobi", "ic0", "eigen-ict"};
   for (const std::string& v : boomeramg_variant_names()) names.push_back(v);
   names.push_back("pmg");
   names.push_back("schwarz");
@@ -118,7 +140,8 @@ std::unique_ptr<Preconditioner> make_preconditioner(std::string_view name) {
   if (name == "none") return std::make_unique<IdentityPreconditioner>();
   if (name == "jacobi") return std::make_unique<JacobiPreconditioner>();
   if (name == "block-jacobi") return std::make_unique<BlockJacobiPreconditioner>();
-  if (name == "ic0") return std::make_unique<IncompleteCholeskyPreconditioner>();
+  if (name == "ic0") return std::make_unique<IncompleteCholesky0Preconditioner>();
+  if (name == "eigen-ict") return std::make_unique<EigenIncompleteCholeskyPreconditioner>();
   if (name == "pmg") return make_p_multigrid_preconditioner();
   if (name == "schwarz") return make_additive_schwarz_preconditioner();
   for (const std::string& v : boomeramg_variant_names())

@@ -41,7 +41,9 @@ class Preconditioner {
 };
 
 /// "none", "jacobi", "block-jacobi" (3x3 nodal blocks), "ic0" (incomplete
-/// Cholesky, zero fill, natural ordering, diagonal shift retried on breakdown),
+/// Cholesky with zero fill, thesis Algorithm 2, diagonal shift retried on
+/// breakdown: solver/incomplete_cholesky.hpp), "eigen-ict" (Eigen's
+/// memory-limited incomplete Cholesky, Lin and More; natural ordering),
 /// BoomerAMG variants "amg..." (solver/boomeramg.hpp), "pmg" (p-multigrid,
 /// solver/p_multigrid.hpp), "schwarz" (element-block Additive Schwarz,
 /// solver/additive_schwarz.hpp). Throws std::invalid_argument naming the valid choices.
