@@ -35,6 +35,17 @@ void dispatch_nodes(int n, F&& f) {
 // next to CHOLMOD's BLAS threads slow small solves down measurably.
 constexpr int kMinParallelElements = 512;
 
+// Rethrows the first error of an element loop with the element index added.
+[[noreturn]] void rethrow_with_element(const std::exception_ptr& error, int element) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const ElementGeometryError& ex) {
+    throw ElementGeometryError(fmt::format("element {}: {}", element, ex.what()));
+  } catch (const MaterialDomainError& ex) {
+    throw MaterialDomainError(fmt::format("element {}: {}", element, ex.what()));
+  }
+}
+
 template <int N, class Body>
 void for_each_element(const Mesh& mesh, const SparsityPattern& pattern, Body&& body) {
   std::exception_ptr error;
@@ -57,15 +68,7 @@ void for_each_element(const Mesh& mesh, const SparsityPattern& pattern, Body&& b
       }
     }
   }
-  if (error) {
-    try {
-      std::rethrow_exception(error);
-    } catch (const ElementGeometryError& ex) {
-      throw ElementGeometryError(fmt::format("element {}: {}", error_element, ex.what()));
-    } catch (const MaterialDomainError& ex) {
-      throw MaterialDomainError(fmt::format("element {}: {}", error_element, ex.what()));
-    }
-  }
+  if (error) rethrow_with_element(error, error_element);
 }
 
 // Runs body(ws, e, owns) for every element with a node the calling thread
@@ -109,15 +112,7 @@ void for_each_element_by_columns(const Mesh& mesh, const SparsityPattern& patter
       }
     }
   }
-  if (error) {
-    try {
-      std::rethrow_exception(error);
-    } catch (const ElementGeometryError& ex) {
-      throw ElementGeometryError(fmt::format("element {}: {}", error_element, ex.what()));
-    } catch (const MaterialDomainError& ex) {
-      throw MaterialDomainError(fmt::format("element {}: {}", error_element, ex.what()));
-    }
-  }
+  if (error) rethrow_with_element(error, error_element);
 }
 
 // Adds element e's Hessian (ws.hessian_entry) into the value array of a matrix
