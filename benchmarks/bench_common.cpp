@@ -8,6 +8,7 @@
 
 #include "assembly/assembler.hpp"
 #include "material/material.hpp"
+#include "mesh/atomic_file.hpp"
 #include "mesh/box_mesh.hpp"
 #include "solver/linear_solver.hpp"
 
@@ -355,9 +356,11 @@ struct HistoryStore {
   }
   ~HistoryStore() {
     if (path.empty()) return;
-    std::ofstream out(path);
-    out << nlohmann::json{{"preset", preset().name}, {"runs", runs}}.dump(1) << "\n";
-    if (!out) std::fprintf(stderr, "hofem_bench: could not write %s\n", path.c_str());
+    try {
+      write_file_atomically(path, nlohmann::json{{"preset", preset().name}, {"runs", runs}}.dump(1) + "\n");
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "hofem_bench: %s\n", e.what());
+    }
   }
 };
 

@@ -4,10 +4,13 @@
 #include "run_verification.hpp"
 
 #include "basis/reference_basis.hpp"
+#include "mesh/atomic_file.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "mesh/input_file.hpp"
 #include "mesh/mesh_partition.hpp"
 #include "mesh/mesh_quality.hpp"
+#include "mesh/mesh_reorient.hpp"
 #include "mesh/mesh_upgrade.hpp"
 #include "mesh/vtu_writer.hpp"
 #include "quadrature/rule_library.hpp"
@@ -31,6 +34,32 @@ namespace {
 // Output paths may name a directory that does not exist yet (reports/, out/...).
 void ensure_parent_directory(const std::string& path) {
   if (const std::filesystem::path p(path); p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+}
+
+// --limit NAME=VALUE options, applied before any input is read.
+void apply_limits(const std::vector<std::string>& limits) {
+  for (const std::string& l : limits) {
+    try {
+      set_input_limit(l);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+  }
+}
+
+// A unit-cube mesh of n cells per side over the caps is refused before it is built.
+void check_cube_size(int n, CellType cell, int order, const char* option) {
+  const long long c = n, p = order;
+  const std::string excess =
+      mesh_size_excess(c * c * c * (cell == CellType::Tetrahedron ? 6 : 1), (p * c + 1) * (p * c + 1) * (p * c + 1));
+  if (!excess.empty()) throw UsageError(fmt::format("{} {}: {}", option, n, excess));
+}
+
+// An order over the cap is refused before a basis of that order is built.
+void check_order(int order) {
+  if (order > input_limits().order)
+    throw UsageError(fmt::format("--order {} is over the cap of {} (raise it with --limit order=N)", order,
+                                 input_limits().order));
 }
 
 CellType parse_cell_or_throw(const std::string& text) {
@@ -95,6 +124,7 @@ int run_quadrature(const QuadratureOptions& o) {
 int run_basis(const BasisOptions& o) {
   const CellType cell = parse_cell_or_throw(o.cell);
   if (o.order < 1) throw UsageError(fmt::format("--order must be >= 1, got {}", o.order));
+  check_order(o.order);
   if (cell == CellType::Quadrilateral) throw UsageError("--cell: no Lagrange basis on quad yet (valid: segment, triangle, tet, hex)");
   if (cell == CellType::Hexahedron && o.order > 2) throw UsageError(fmt::format("--order: hex supports 1 (Hex8) or 2 (Hex20), got {}", o.order));
   const ReferenceBasis& b = lagrange_basis(cell, o.order);
@@ -119,6 +149,8 @@ int run_basis(const BasisOptions& o) {
 
 int run_mesh(const MeshOptions& o) {
   if ((o.box > 0) == !o.msh.empty()) throw UsageError("give exactly one of --box N or --msh FILE");
+  apply_limits(o.limits);
+  if (o.reorient && o.msh.empty()) throw UsageError("--reorient repairs a mesh read with --msh");
   Mesh m;
   if (o.box > 0) {
     const CellType cell = parse_cell_or_throw(o.cell);
@@ -127,12 +159,20 @@ int run_mesh(const MeshOptions& o) {
     const int order = o.order == kUnset ? 1 : o.order;
     if (order < 1 || (cell == CellType::Hexahedron && order > 2))
       throw UsageError(fmt::format("--order: tet needs >= 1, hex 1 or 2; got {}", order));
+    check_order(order);
+    check_cube_size(o.box, cell, order, "--box");
     m = box_mesh(unit_cube(o.box), cell, order);
   } else {
     m = read_gmsh(o.msh);
     if (o.order != kUnset && o.order != m.order) {
       if (m.order != 1) throw UsageError(fmt::format("--order: only a linear mesh can be raised, '{}' has order {}", o.msh, m.order));
+      check_order(o.order);
       m = upgrade_order(m, o.order);
+    }
+    if (o.reorient) {
+      const std::vector<int> flipped = reorient_inverted_elements(m);
+      fmt::print(stderr, "hofem: warning: --reorient renumbered {} inverted element(s){}\n", flipped.size(),
+                 flipped.empty() ? std::string() : ", the first " + describe_element(m, flipped.front()));
     }
   }
   validate_mesh(m);  // names the first inverted or degenerate element
@@ -195,6 +235,9 @@ int run_mms(const MmsOptions& o) {
   if (o.n < 1) throw UsageError(fmt::format("--n must be >= 1, got {}", o.n));
   if (o.order < 1 || (cell == CellType::Hexahedron && o.order > 2))
     throw UsageError(fmt::format("--order: tet needs >= 1, hex 1 or 2; got {}", o.order));
+  apply_limits(o.limits);
+  check_order(o.order);
+  check_cube_size(o.n, cell, o.order, "--n");
   if (!o.vtu.empty()) ensure_parent_directory(o.vtu);
   verification::MmsCase c{o.problem, cell, o.order, o.n, o.perturbed, o.solver, o.vtu};
   c.distributed = o.distributed;
@@ -245,9 +288,7 @@ int run_verify(const VerifyOptions& o) {
   // --group: the file holds that group's rows, measurements and summary only.
   const nlohmann::json j = o.group.empty() ? report.to_json() : report.only(o.group).to_json();
   ensure_parent_directory(o.out);
-  std::ofstream f(o.out);
-  if (!f) throw std::runtime_error(fmt::format("cannot write '{}'", o.out));
-  f << j.dump(1) << '\n';
+  write_file_atomically(o.out, j.dump(1) + "\n");  // complete or absent, never truncated
   if (!o.quiet) {
     fmt::print("{}", report.summary_table());
     for (const auto& r : report.rows())
@@ -259,12 +300,14 @@ int run_verify(const VerifyOptions& o) {
 }
 
 int run_scene_file(const RunOptions& o) {
+  apply_limits(o.limits);
   Scene scene;
   try {
     scene = read_scene(o.scene);
   } catch (const SceneError& e) {
     throw UsageError(e.what());
   }
+  scene.reorient = o.reorient;
   SceneRunOptions options;
   options.progress = true;
   options.write_frames = !o.no_frames;

@@ -2,6 +2,7 @@
 // The work behind each `hofem` subcommand, separate from argument parsing.
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace hofem::cli {
 
@@ -37,6 +38,8 @@ struct MeshOptions {
   std::string vtu;
   bool json = false;
   int partition = 0;  ///< > 0: also partition the elements into this many parts (RCB) and report the quality
+  std::vector<std::string> limits;  ///< --limit NAME=VALUE: raised input caps (mesh/input_file.hpp)
+  bool reorient = false;            ///< flip straight inverted elements of --msh, with a warning
 };
 int run_mesh(const MeshOptions& o);
 
@@ -53,6 +56,7 @@ struct MmsOptions {
   std::string krylov = "pcg";   ///< distributed solver (DistributedSolverOptions)
   std::string amg = "amg";
   bool rigid_body_modes = false;
+  std::vector<std::string> limits;  ///< --limit NAME=VALUE
 };
 int run_mms(const MmsOptions& o);
 
@@ -69,6 +73,8 @@ struct RunOptions {
   std::string out;
   bool no_frames = false;
   bool distributed = false;  ///< over the MPI ranks (mpirun -np K hofem run ... --distributed)
+  std::vector<std::string> limits;  ///< --limit NAME=VALUE
+  bool reorient = false;            ///< flip straight inverted elements of the scene's .msh files, with a warning
 };
 /// Exit status 0 when every step succeeded, 1 when a step failed (stats.json
 /// still written), 2 for an invalid scene (the message names the file and key).

@@ -10,10 +10,11 @@
 //   hofem verify [--out reports/verification.json]    the verification suite
 //
 // Bad arguments print one line, "hofem: error: ...", and exit with status 2;
-// failed verification exits with status 1.
+// failed verification exits with status 1. The options are parsed in
+// command_line.cpp (shared with the command-line fuzz target); this file runs them.
+#include "command_line.hpp"
 #include "commands.hpp"
 
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
 #include <cstdio>
@@ -21,96 +22,17 @@
 #include <string>
 
 int main(int argc, char** argv) {
-  CLI::App app{"hofem: verification and benchmark harness for high-order FEM of deformable solids"};
-  app.require_subcommand(1);
-  app.set_help_all_flag("--help-all", "Help for every subcommand");
-
-  hofem::cli::QuadratureOptions qo;
-  auto* quad = app.add_subcommand("quadrature", "Print the quadrature rule for a cell and degree");
-  quad->add_option("--cell", qo.cell, "segment, triangle, tet, quad or hex")->required();
-  quad->add_option("--degree", qo.degree, "Degree of exactness wanted (>= 0)");
-  quad->add_flag("--json", qo.json, "Print JSON {cell, degree, source, points, weights}");
-  quad->add_flag("--list", qo.list, "List every tabulated rule of the cell instead");
-
-  hofem::cli::BasisOptions bo;
-  auto* basis = app.add_subcommand("basis", "Print the nodes of a Lagrange element (Gmsh order)");
-  basis->add_option("--cell", bo.cell, "segment, triangle, tet or hex")->required();
-  basis->add_option("--order", bo.order, "Polynomial order (>= 1; hex: 1 = Hex8, 2 = Hex20)")->required();
-  basis->add_flag("--json", bo.json, "Print JSON");
-
-  hofem::cli::MeshOptions meo;
-  auto* mesh = app.add_subcommand("mesh", "Build or read a mesh, report its element quality, optionally write VTU");
-  mesh->add_option("--box", meo.box, "Unit cube with N cells per side");
-  mesh->add_option("--msh", meo.msh, "Gmsh .msh file (4.1 or 2.2 ASCII)");
-  mesh->add_option("--cell", meo.cell, "Box mesh cells: tet or hex")->capture_default_str();
-  mesh->add_option("--order", meo.order, "Element order (box: any for tet, 1-2 for hex; msh: raise a linear mesh to it)");
-  mesh->add_option("--vtu", meo.vtu, "Write the mesh to this .vtu file");
-  mesh->add_flag("--json", meo.json, "Print JSON");
-  mesh->add_option("--partition", meo.partition, "Partition into K parts (recursive coordinate bisection) and report their quality");
-
-  hofem::cli::MmsOptions mo;
-  auto* mms = app.add_subcommand("mms", "Solve a manufactured-solution problem on the unit cube and print its errors");
-  mms->add_option("--problem", mo.problem, "linear or neohookean")->required();
-  mms->add_option("--order", mo.order, "Element order (tet: >= 1; hex: 1 = Hex8, 2 = Hex20)")->required();
-  mms->add_option("--n", mo.n, "Cubes per side (>= 1)")->required();
-  mms->add_option("--cell", mo.cell, "tet or hex")->capture_default_str();
-  mms->add_flag("--perturbed", mo.perturbed, "Randomly perturb interior vertices (non-uniform mesh)");
-  mms->add_option("--solver", mo.solver, "Linear solver: auto (the fastest for the system, with a tolerance tied to the discretisation error), cholmod, umfpack, eigen-ldlt, hypre-pcg+amg, or <cg|cr|minres|gmres>+<none|jacobi|block-jacobi|ic0|amg|amg-nodal|amg-aggressive|pmg|schwarz>")->capture_default_str();
-  mms->add_flag("--json", mo.json, "Print JSON");
-  mms->add_flag("--distributed", mo.distributed,
-                "Partition the elements over the MPI ranks and solve on hypre (mpirun -np K hofem mms ...; rank 0 prints)");
-  mms->add_option("--vtu", mo.vtu, "Write the solution (displacement, exact displacement, L2 error per cell) to this .vtu");
-  mms->add_option("--krylov", mo.krylov, "With --distributed: hypre's pcg or gmres")->capture_default_str();
-  mms->add_option("--amg", mo.amg, "With --distributed: BoomerAMG variant (amg, amg-nodal, amg-aggressive)")
-      ->capture_default_str();
-  mms->add_flag("--rigid-body-modes", mo.rigid_body_modes,
-                "With --distributed: rigid rotations as BoomerAMG interpolation vectors (nodal coarsening)");
-
-  hofem::cli::VerifyOptions vo;
-  auto* verify = app.add_subcommand("verify", "Run the verification suite and write its JSON report");
-  verify->add_option("--out", vo.out, "Report path")->capture_default_str();
-  verify->add_option("--group", vo.group, "Only report rows whose group starts with this prefix");
-  verify->add_flag("--quiet", vo.quiet, "Print only the summary line");
-  verify->add_option("--convergence", vo.convergence, "Manufactured-solution study: none, ci or full")->capture_default_str();
-
-  hofem::cli::RunOptions ro;
-  auto* run = app.add_subcommand("run", "Run a scene file: VTU frames, a .pvd index and stats.json into --out");
-  run->add_option("scene", ro.scene, "Scene file (JSON; scripts/scenes/ has the built-in ones)")->required();
-  run->add_option("--out", ro.out, "Output directory")->required();
-  run->add_flag("--no-frames", ro.no_frames, "Write stats.json only");
-  run->add_flag("--distributed", ro.distributed,
-                "Partition the elements over the MPI ranks (static and implicit-Euler scenes; mpirun -np K; rank 0 writes)");
-
-  // CLI11 reports an unknown first word as "a subcommand is required"; name it instead.
-  if (argc > 1 && argv[1][0] != '-') {
-    const std::string first = argv[1];
-    bool known = false;
-    for (const auto* sub : app.get_subcommands({})) known = known || sub->get_name() == first;
-    if (!known) {
-      fmt::print(stderr, "hofem: error: unknown subcommand '{}' (valid: quadrature, basis, mesh, mms, verify, run)\n", first);
-      return 2;
-    }
-  }
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    std::string what = e.what();
-    if (what.empty()) what = e.get_name();
-    fmt::print(stderr, "hofem: error: {} (run 'hofem --help')\n", what);
-    return 2;
-  }
+  hofem::cli::CommandLine cl;
+  if (const int status = hofem::cli::parse_command_line(argc, argv, cl, stdout, stderr); status >= 0) return status;
 
   try {
-    if (*quad) return hofem::cli::run_quadrature(qo);
-    if (*basis) return hofem::cli::run_basis(bo);
-    if (*verify) return hofem::cli::run_verify(vo);
-    if (*mms) return hofem::cli::run_mms(mo);
-    if (*mesh) return hofem::cli::run_mesh(meo);
-    if (*run) return hofem::cli::run_scene_file(ro);
+    const std::string& sub = cl.subcommand;
+    if (sub == "quadrature") return hofem::cli::run_quadrature(cl.quadrature);
+    if (sub == "basis") return hofem::cli::run_basis(cl.basis);
+    if (sub == "verify") return hofem::cli::run_verify(cl.verify);
+    if (sub == "mms") return hofem::cli::run_mms(cl.mms);
+    if (sub == "mesh") return hofem::cli::run_mesh(cl.mesh);
+    if (sub == "run") return hofem::cli::run_scene_file(cl.run);
   } catch (const hofem::cli::UsageError& e) {
     fmt::print(stderr, "hofem: error: {}\n", e.what());
     return 2;

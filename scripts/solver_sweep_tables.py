@@ -9,11 +9,36 @@ SWEEP_KINDS = ("BM_LinearSolve", "BM_NewtonSolve")
 TIME_UNITS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 
 
+# Preconditioner names of files written before the context key
+# "preconditioner_names" (version 2): their "ic0" was Eigen's incomplete
+# Cholesky (Lin-More, memory-limited), which is "eigen-ict" since "ic0" became
+# the zero-fill IC(0) of the thesis' Algorithm 2.
+OLD_PRECONDITIONER_NAMES = {"ic0": "eigen-ict"}
+
+
+def current_name(run_name, names_version):
+    """The benchmark name under today's preconditioner names."""
+    if names_version >= 2:
+        return run_name
+    parts = run_name.split("/")
+    for i, p in enumerate(parts):
+        if "+" in p:
+            method, pc = p.split("+", 1)
+            parts[i] = method + "+" + OLD_PRECONDITIONER_NAMES.get(pc, pc)
+    return "/".join(parts)
+
+
 def parse(bench):
     """Runs of the sweep and the bandwidth kernels: the benchmark's JSON entry plus
     kind, problem, cell, order, n, combo, seconds, status ('ok' / 'skipped' /
-    'failed'). Of repeated benchmarks only the median aggregate is kept."""
-    entries = bench.get("benchmarks", [])
+    'failed'). Of repeated benchmarks only the median aggregate is kept. Names are
+    today's (OLD_PRECONDITIONER_NAMES maps an older file's)."""
+    version = int(bench.get("context", {}).get("preconditioner_names", "1"))
+    if any("eigen-ict" in b["name"] for b in bench.get("benchmarks", [])):
+        version = 2  # written between the rename and the context key: already today's names
+    entries = [dict(b, name=current_name(b["name"], version),
+                    run_name=current_name(b.get("run_name", b["name"]), version))
+               for b in bench.get("benchmarks", [])]
     aggregated = {b.get("run_name") for b in entries if b.get("run_type") == "aggregate"}
     runs = []
     for b in entries:

@@ -6,6 +6,7 @@
 // names); assemble() then keeps the volume elements and the physical groups and
 // renumbers the nodes that are used.
 #include "mesh/gmsh_reader.hpp"
+#include "mesh/input_file.hpp"
 #include "mesh/text_lines.hpp"
 
 #include <fmt/format.h>
@@ -53,6 +54,7 @@ using Lines = detail::TextLines;
 using Key = std::pair<int, int>;  // (dimension, tag)
 
 struct RawElement {
+  long long tag;  // the element's number in the file
   int type;
   int dim;    // entity dimension (4.1), dimension of the type (2.2), -1 if unknown
   int group;  // 4.1: entity tag; 2.2: physical tag (0 = none)
@@ -63,7 +65,7 @@ struct RawElement {
 
 class Parser {
  public:
-  Parser(std::string_view text, std::string_view origin) : in_(text, origin) {}
+  Parser(std::string_view text, std::string_view origin) : in_(text, origin), origin_(origin) {}
 
   Mesh run() {
     read_format();
@@ -206,6 +208,8 @@ class Parser {
   }
 
   void add_node(long long tag) {
+    if (static_cast<long long>(node_line_.size()) >= input_limits().nodes)
+      in_.fail(fmt::format("more than {} nodes: over the cap (raise it with --limit nodes=N)", input_limits().nodes));
     const auto [it, inserted] = node_index_.emplace(tag, static_cast<int>(node_line_.size()));
     if (!inserted)
       in_.fail(fmt::format("duplicate node tag {} (first defined at line {})", tag, node_line_[it->second]));
@@ -257,14 +261,18 @@ class Parser {
   }
 
   // Stores the element on the current line; its node tags are tokens first..end.
-  void add_element(int type, int dim, int group, std::size_t first) {
+  void add_element(long long tag, int type, int dim, int group, std::size_t first) {
+    // The cap is checked per record, so a count bomb in a header allocates nothing.
+    if (static_cast<long long>(elements_.size()) >= input_limits().elements)
+      in_.fail(fmt::format("more than {} elements: over the cap (raise it with --limit elements=N)",
+                           input_limits().elements));
     const GmshType* t = find_type(type);
     const std::size_t listed = in_.size() - first;
     if (t && listed != static_cast<std::size_t>(t->num_nodes))
       in_.fail(fmt::format("a {} (element type {}) has {} nodes, but this element lists {}", t->name, type,
                            t->num_nodes, listed));
     if (!t && listed == 0) in_.fail(fmt::format("element of type {} lists no nodes", type));
-    elements_.push_back({type, dim, group, in_.number(), element_nodes_.size(), static_cast<int>(listed)});
+    elements_.push_back({tag, type, dim, group, in_.number(), element_nodes_.size(), static_cast<int>(listed)});
     for (std::size_t j = first; j < in_.size(); ++j) element_nodes_.push_back(in_.integer(j, "node tag", 1, LLONG_MAX));
   }
 
@@ -286,8 +294,7 @@ class Parser {
                              t->name, t->dim, dim));
       for (long long i = 0; i < n; ++i) {
         record("an element");
-        in_.integer(0, "element tag", 1, LLONG_MAX);
-        add_element(type, dim, entity, 1);
+        add_element(in_.integer(0, "element tag", 1, LLONG_MAX), type, dim, entity, 1);
       }
       if ((seen += n) > INT_MAX) in_.fail("too many elements");
     }
@@ -302,14 +309,14 @@ class Parser {
     for (long long i = 0; i < n; ++i) {
       record("an element");
       if (in_.size() < 3) in_.fail("expected 'elm-number elm-type number-of-tags <tags> <nodes>'");
-      in_.integer(0, "element number", 1, LLONG_MAX);
+      const long long tag = in_.integer(0, "element number", 1, LLONG_MAX);
       const int type = in_.small(1, "element type");
       const auto ntags = static_cast<std::size_t>(in_.integer(2, "number of tags", 0, in_.size() - 3));
       for (std::size_t j = 0; j < ntags; ++j) in_.small(3 + j, "element tag");
       const GmshType* t = find_type(type);
       const bool other_volume =
           std::find(std::begin(kOtherVolumeTypes), std::end(kOtherVolumeTypes), type) != std::end(kOtherVolumeTypes);
-      add_element(type, t ? t->dim : (other_volume ? 3 : -1), ntags ? in_.small(3, "physical tag") : 0, 3 + ntags);
+      add_element(tag, type, t ? t->dim : (other_volume ? 3 : -1), ntags ? in_.small(3, "physical tag") : 0, 3 + ntags);
     }
     end_section();
   }
@@ -392,9 +399,12 @@ class Parser {
     for (std::size_t i = 0; i < used.size(); ++i)
       if (used[i]) mesh.nodes.col(id[i]) = Eigen::Vector3d(xyz_[3 * i], xyz_[3 * i + 1], xyz_[3 * i + 2]);
     mesh.elements.resize(volume->num_nodes, static_cast<Eigen::Index>(volumes.size()));
+    mesh.source.file = origin_;
     std::vector<int> volume_index(elements_.size(), -1);
     for (std::size_t c = 0; c < volumes.size(); ++c) {
       const RawElement& e = elements_[volumes[c]];
+      mesh.source.element_tags.push_back(e.tag);
+      mesh.source.element_lines.push_back(e.line);
       volume_index[volumes[c]] = static_cast<int>(c);
       for (int j = 0; j < e.count; ++j)
         mesh.elements(j, static_cast<Eigen::Index>(c)) = id[element_nodes_[e.first + j]];
@@ -424,6 +434,7 @@ class Parser {
   }
 
   Lines in_;
+  std::string origin_;
   bool v4_ = false;
   std::string section_;
   int section_line_ = 0, entities_line_ = 0, nodes_line_ = 0, elements_line_ = 0;
@@ -441,15 +452,13 @@ class Parser {
 Mesh read_gmsh_text(std::string_view text, std::string_view origin) { return Parser(text, origin).run(); }
 
 Mesh read_gmsh(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw MeshError(fmt::format("{}: cannot read mesh file: is a directory", path));
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw MeshError(fmt::format("{}: cannot open mesh file: {}", path, std::strerror(errno)));
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) throw MeshError(fmt::format("{}: error while reading mesh file", path));
-  return read_gmsh_text(text.str(), path);
+  std::string text;
+  try {
+    text = read_input_file(path, "the mesh file", input_limits().mesh_file_bytes);
+  } catch (const InputError& e) {
+    throw MeshError(e.what());
+  }
+  return read_gmsh_text(text, path == "-" ? "<stdin>" : path);
 }
 
 }  // namespace hofem

@@ -12,6 +12,14 @@ const std::vector<int>& Mesh::node_set(const std::string& name) const {
   throw MeshError(fmt::format("no node set '{}' (available: {})", name, names.empty() ? "none" : names));
 }
 
+std::string describe_element(const Mesh& mesh, int e) {
+  const MeshSource& src = mesh.source;
+  const auto k = static_cast<std::size_t>(e);
+  if (src.file.empty() || k >= src.element_tags.size()) return fmt::format("element {}", e);
+  if (k < src.element_lines.size()) return fmt::format("{}:{}: element {}", src.file, src.element_lines[k], src.element_tags[k]);
+  return fmt::format("{}: element {}", src.file, src.element_tags[k]);
+}
+
 int nodes_per_element(CellType cell, int order) {
   if (cell == CellType::Tetrahedron) {
     if (order < 1) throw MeshError(fmt::format("tetrahedron order must be >= 1, got {}", order));

@@ -19,6 +19,14 @@ class MeshError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Where a mesh read from a file came from, so that errors about its elements
+/// name the file, the element's own tag and its line (not only hofem's index).
+struct MeshSource {
+  std::string file;                     ///< empty for generated meshes
+  std::vector<long long> element_tags;  ///< per element: its tag in the file
+  std::vector<int> element_lines;       ///< per element: its line in the file
+};
+
 struct Mesh {
   CellType cell = CellType::Tetrahedron;  ///< Tetrahedron or Hexahedron
   int order = 1;                          ///< Lagrange order (hex: 1 = Hex8, 2 = Hex20 serendipity)
@@ -30,6 +38,7 @@ struct Mesh {
   std::map<std::string, std::vector<int>> node_sets;
   /// Named element sets (physical volume groups).
   std::map<std::string, std::vector<int>> element_sets;
+  MeshSource source;  ///< file, element tags and lines (empty for generated meshes)
 
   int num_nodes() const { return static_cast<int>(nodes.cols()); }
   int num_elements() const { return static_cast<int>(elements.cols()); }
@@ -40,6 +49,10 @@ struct Mesh {
   /// Node set by name; throws MeshError naming the set and the available ones.
   const std::vector<int>& node_set(const std::string& name) const;
 };
+
+/// "ball.msh:42: element 15" (the file, the element's line and its tag) for a
+/// mesh read from a file, "element 14" (the index) for a generated one.
+std::string describe_element(const Mesh& mesh, int e);
 
 /// Nodes per element for a cell and order (Tet: (p+1)(p+2)(p+3)/6; Hex8: 8; Hex20: 20).
 int nodes_per_element(CellType cell, int order);

@@ -34,6 +34,33 @@ void dihedral_range(const Eigen::Vector3d v[4], double& lo, double& hi) {
 
 }  // namespace
 
+ElementJacobians::ElementJacobians(CellType cell, int order) {
+  const ReferenceBasis& basis = lagrange_basis(cell, order);
+  const BasisTabulation& tab = cached_tabulation(cell, order, 2 * order);
+  for (int p = 0; p < tab.num_points; ++p) point_gradients_.emplace_back(tab.gradient(p));
+  quadrature_points_ = tab.num_points;
+  const Eigen::MatrixXd verts = reference_vertices(cell);
+  for (int v = 0; v < verts.cols(); ++v) point_gradients_.push_back(basis.gradients(verts.col(v)));
+}
+
+ElementJacobians::Extremes ElementJacobians::extremes(const Mesh& mesh, int element) const {
+  Eigen::Matrix3Xd X(3, mesh.nodes_per_element());
+  for (int i = 0; i < mesh.nodes_per_element(); ++i) X.col(i) = mesh.nodes.col(mesh.elements(i, element));
+  Extremes d{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), "", 0};
+  for (std::size_t k = 0; k < point_gradients_.size(); ++k) {
+    const double det = (X * point_gradients_[k]).determinant();
+    const int q = static_cast<int>(k);
+    // A NaN (overflowing coordinates) is kept as the minimum: it must not pass for valid.
+    if (!(det >= d.min) && !std::isnan(d.min)) {
+      d.min = det;
+      d.where = q < quadrature_points_ ? "quadrature point" : "vertex";
+      d.index = q < quadrature_points_ ? q : q - quadrature_points_;
+    }
+    d.max = std::max(d.max, det);
+  }
+  return d;
+}
+
 MeshQuality measure_quality(const Mesh& mesh, int quadrature_degree) {
   const int degree = quadrature_degree >= 0 ? quadrature_degree : 2 * mesh.order;
   const BasisTabulation& tab = cached_tabulation(mesh.cell, mesh.order, degree);
@@ -72,29 +99,32 @@ void validate_mesh(const Mesh& mesh) {
   for (int e = 0; e < mesh.num_elements(); ++e)
     for (int i = 0; i < mesh.nodes_per_element(); ++i)
       if (mesh.elements(i, e) < 0 || mesh.elements(i, e) >= mesh.num_nodes())
-        throw MeshError(fmt::format("element {}: node index {} out of range [0, {})", e, mesh.elements(i, e), mesh.num_nodes()));
+        throw MeshError(fmt::format("{}: node index {} out of range [0, {})", describe_element(mesh, e),
+                                    mesh.elements(i, e), mesh.num_nodes()));
   // Typical element volume scale: bounding box volume / number of elements.
   const Eigen::Vector3d ext = mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff();
   const double scale = std::max(ext.prod(), std::pow(ext.maxCoeff(), 3) * 1e-30) / mesh.num_elements();
-  // Quadrature points of the stiffness rule plus the vertices (a curved element
-  // can be valid at its quadrature points and fold at a corner).
-  const ReferenceBasis& basis = lagrange_basis(mesh.cell, mesh.order);
-  const BasisTabulation& tab = cached_tabulation(mesh.cell, mesh.order, 2 * mesh.order);
-  std::vector<Eigen::MatrixXd> vertex_grads;
-  const Eigen::MatrixXd verts = reference_vertices(mesh.cell);
-  for (int v = 0; v < verts.cols(); ++v) vertex_grads.push_back(basis.gradients(verts.col(v)));
-  Eigen::Matrix3Xd X(3, mesh.nodes_per_element());
+  const ElementJacobians jacobians(mesh.cell, mesh.order);
   for (int e = 0; e < mesh.num_elements(); ++e) {
-    for (int i = 0; i < mesh.nodes_per_element(); ++i) X.col(i) = mesh.nodes.col(mesh.elements(i, e));
-    auto check = [&](double det, const char* where, int k) {
-      if (det <= 0.0)
-        throw MeshError(fmt::format("element {}: inverted (det J = {:.3e} at {} {})", e, det, where, k));
-      if (det * reference_volume(mesh.cell) < 1e-12 * scale)
-        throw MeshError(fmt::format("element {}: degenerate (det J = {:.3e} at {} {}, typical element volume {:.3e})", e, det,
-                                    where, k, scale));
-    };
-    for (int p = 0; p < tab.num_points; ++p) check((X * tab.gradient(p)).determinant(), "quadrature point", p);
-    for (size_t v = 0; v < vertex_grads.size(); ++v) check((X * vertex_grads[v]).determinant(), "vertex", static_cast<int>(v));
+    const ElementJacobians::Extremes d = jacobians.extremes(mesh, e);
+    const double tiny = 1e-12 * scale / reference_volume(mesh.cell);  // det J of a flat element, rounding included
+    const bool flat = std::abs(d.min) <= tiny && std::abs(d.max) <= tiny;
+    if (!flat && !(d.min > 0.0)) {
+      // Negative everywhere: the nodes are numbered the wrong way round, which a
+      // renumbering (or --reorient, for straight elements) fixes. Mixed signs: the
+      // element folds (a mid-edge node pushed out, a twisted hex): fix the geometry.
+      const bool everywhere = d.max < 0.0;
+      throw MeshError(fmt::format(
+          "{}: inverted (det J = {:.3e} at {} {}{}); {}", describe_element(mesh, e), d.min, d.where, d.index,
+          everywhere ? ", negative at every point" : fmt::format(", {:.3e} elsewhere", d.max),
+          everywhere ? "its nodes are ordered the wrong way round: renumber them in the mesh generator, or run with "
+                       "--reorient to flip straight inverted elements"
+                     : "the element folds over itself (a mid-edge node pushed out, a twisted hex): move its nodes"));
+    }
+    if (flat || d.min < tiny)
+      throw MeshError(fmt::format("{}: degenerate (det J = {:.3e} at {} {}, typical element volume {:.3e}): flat, "
+                                  "coplanar or repeated nodes; remove or repair the element",
+                                  describe_element(mesh, e), d.min, d.where, d.index, scale));
   }
 }
 

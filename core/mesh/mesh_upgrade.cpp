@@ -125,6 +125,7 @@ Mesh upgrade_order(const Mesh& linear, int order) {
   out.cell = linear.cell;
   out.order = order;
   out.element_sets = linear.element_sets;
+  out.source = linear.source;
   out.elements.resize(npe, linear.num_elements());
 
   // Local node -> (local vertex, lattice weight) pairs.

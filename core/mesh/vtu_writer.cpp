@@ -1,5 +1,7 @@
 #include "mesh/vtu_writer.hpp"
 
+#include "mesh/atomic_file.hpp"
+
 #include "basis/lagrange_nodes.hpp"
 
 #include <fmt/format.h>
@@ -136,38 +138,27 @@ std::string xml_escape(std::string_view s) {
 }
 
 // Buffered output to a file; every failure becomes a std::runtime_error naming the path.
+// Text output in 1 MB chunks through an AtomicFile: a frame is complete under
+// its name or not there at all.
 class XmlFile {
  public:
-  explicit XmlFile(const std::string& path) : path_(path), file_(std::fopen(path.c_str(), "wb")) {
-    if (!file_) throw std::runtime_error(fmt::format("cannot write '{}': {}", path, std::strerror(errno)));
-  }
-  XmlFile(const XmlFile&) = delete;
-  XmlFile& operator=(const XmlFile&) = delete;
-  ~XmlFile() {
-    if (file_) std::fclose(file_);
-  }
+  explicit XmlFile(const std::string& path) : file_(path) {}
   template <typename... Args>
   void print(fmt::format_string<Args...> f, Args&&... args) {
     fmt::format_to(std::back_inserter(buf_), f, std::forward<Args>(args)...);
     if (buf_.size() > (1u << 20)) flush();
   }
   void flush() {
-    if (buf_.size() != 0 && std::fwrite(buf_.data(), 1, buf_.size(), file_) != buf_.size()) fail();
+    file_.write(std::string_view(buf_.data(), buf_.size()));
     buf_.clear();
   }
   void close() {
     flush();
-    std::FILE* f = file_;
-    file_ = nullptr;
-    if (std::fclose(f) != 0) fail();
+    file_.commit();
   }
 
  private:
-  [[noreturn]] void fail() const {
-    throw std::runtime_error(fmt::format("cannot write '{}': {}", path_, std::strerror(errno)));
-  }
-  std::string path_;
-  std::FILE* file_;
+  AtomicFile file_;
   fmt::memory_buffer buf_;
 };
 

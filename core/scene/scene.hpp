@@ -110,6 +110,9 @@ struct Scene {
   std::vector<SceneBoundary> boundary;
   Eigen::Vector3d initial_velocity = Eigen::Vector3d::Zero();
   int output_every = 1;
+  /// Not a scene key: the command line's --reorient. The mesh builders then flip
+  /// straight inverted elements of a .msh (with a warning) before validating.
+  bool reorient = false;
 };
 
 /// Parses and validates a scene file; throws SceneError naming the file and key.
@@ -117,7 +120,9 @@ Scene read_scene(const std::string& path);
 /// The same for JSON text; `origin` names it in messages.
 Scene parse_scene(const std::string& text, const std::string& origin);
 
-/// Builds the scene's mesh (generator or .msh, upgraded to the order).
+/// Builds the scene's mesh (generator or .msh, upgraded to the order) and
+/// validates it: an inverted or degenerate element is a SceneError naming the
+/// scene, the key, the .msh file and the element's tag and line.
 Mesh build_scene_mesh(const Scene& scene);
 /// The embedded geometry's tetrahedral mesh (generators: Tet4; a .msh as read,
 /// any order); throws SceneError naming embedded.file if it cannot be read or is

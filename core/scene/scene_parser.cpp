@@ -5,6 +5,9 @@
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/gmsh_reader.hpp"
+#include "mesh/input_file.hpp"
+#include "mesh/mesh_quality.hpp"
+#include "mesh/mesh_reorient.hpp"
 #include "mesh/mesh_upgrade.hpp"
 #include "mesh/tube_mesh.hpp"
 #include "solver/linear_solver.hpp"
@@ -25,6 +28,96 @@ namespace hofem {
 namespace {
 
 using json = nlohmann::json;
+
+// A value for a message: short, because a wrong value may be a 1 MB array.
+std::string brief(const json& j) {
+  std::string s = j.dump();
+  if (s.size() > 60) s = s.substr(0, 60) + "...";
+  return s;
+}
+
+// Refuses nesting deeper than the cap before parsing: the scene format nests 5
+// levels, and a value nested 10^5 deep would exhaust the stack of any recursive
+// consumer (nlohmann's dump and destructor included). Brackets inside strings do
+// not count.
+void check_nesting(const std::string& text, const std::string& origin) {
+  const int cap = input_limits().json_depth;
+  int depth = 0;
+  long line = 1;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (c == '\n') ++line;
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > cap)
+        throw SceneError(fmt::format("{}: line {}: JSON nested deeper than {} levels (the cap; raise it with --limit "
+                                     "json-depth=N)",
+                                     origin, line, cap));
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
+// nlohmann's message without its "[json.exception.parse_error.101] " tag.
+std::string without_tag(const char* what) {
+  const std::string_view w(what);
+  const std::size_t end = w.rfind("] ", 40);
+  return std::string(w.substr(w.substr(0, 1) == "[" && end != std::string_view::npos ? end + 2 : 0));
+}
+
+// Parses the JSON, tracking the key path of the value being read so that a
+// number the parser cannot hold (1e999) is reported with its key.
+json parse_json(const std::string& text, const std::string& origin) {
+  struct Frame {
+    bool array;
+    std::string key;
+    long index;
+  };
+  std::vector<Frame> frames;
+  auto path = [&frames] {
+    std::string p;
+    for (const Frame& f : frames)
+      p += f.array ? fmt::format("[{}]", f.index) : (p.empty() ? f.key : "." + f.key);
+    return p.empty() ? std::string("the scene") : p;
+  };
+  auto next_item = [&frames] {
+    if (!frames.empty() && frames.back().array) ++frames.back().index;
+  };
+  const json::parser_callback_t track = [&](int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: frames.push_back({false, "", 0}); break;
+      case json::parse_event_t::array_start: frames.push_back({true, "", 0}); break;
+      case json::parse_event_t::key: frames.back().key = parsed.get<std::string>(); break;
+      case json::parse_event_t::value: next_item(); break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames.pop_back();
+        next_item();
+        break;
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, track);
+  } catch (const json::parse_error& e) {
+    // e.byte is the offset of the error; report the line.
+    const size_t byte = std::min<size_t>(e.byte, text.size());
+    const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(byte > 0 ? byte - 1 : 0), '\n');
+    throw SceneError(fmt::format("{}: line {}: not valid JSON ({})", origin, line, without_tag(e.what())));
+  } catch (const json::out_of_range& e) {
+    // The only range error of the parser: a number beyond double's range.
+    throw SceneError(fmt::format("{}: {}: a number out of the range of a double (|x| < 1.8e308): {}", origin, path(),
+                                 without_tag(e.what())));
+  } catch (const json::exception& e) {
+    throw SceneError(fmt::format("{}: {}: cannot read the JSON: {}", origin, path(), without_tag(e.what())));
+  }
+}
 
 // A JSON value with its key path, whose accessors validate and name the key.
 class Field {
@@ -54,24 +147,27 @@ class Field {
   Field item(size_t i) const { return Field(j_.at(i), fmt::format("{}[{}]", path_, i), origin_); }
 
   double number(double lo, double hi, bool lo_open = false, bool hi_open = false) const {
-    if (!j_.is_number()) fail(fmt::format("must be a number (got {})", j_.dump()));
+    if (!j_.is_number()) fail(fmt::format("must be a number (got {})", brief(j_)));
     const double v = j_.get<double>();
     if (!std::isfinite(v) || (lo_open ? v <= lo : v < lo) || (hi_open ? v >= hi : v > hi))
       fail(fmt::format("= {} is out of range {}{}, {}{}", v, lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]"));
     return v;
   }
   int integer(int lo, int hi) const {
-    if (!j_.is_number_integer()) fail(fmt::format("must be an integer (got {})", j_.dump()));
+    if (!j_.is_number_integer()) fail(fmt::format("must be an integer (got {})", brief(j_)));
+    // A number_unsigned above LLONG_MAX would wrap in get<long long>().
+    if (j_.is_number_unsigned() && j_.get<unsigned long long>() > static_cast<unsigned long long>(hi))
+      fail(fmt::format("= {} is out of range [{}, {}]", j_.get<unsigned long long>(), lo, hi));
     const long long v = j_.get<long long>();
     if (v < lo || v > hi) fail(fmt::format("= {} is out of range [{}, {}]", v, lo, hi));
     return static_cast<int>(v);
   }
   bool boolean() const {
-    if (!j_.is_boolean()) fail(fmt::format("must be true or false (got {})", j_.dump()));
+    if (!j_.is_boolean()) fail(fmt::format("must be true or false (got {})", brief(j_)));
     return j_.get<bool>();
   }
   std::string string() const {
-    if (!j_.is_string()) fail(fmt::format("must be a string (got {})", j_.dump()));
+    if (!j_.is_string()) fail(fmt::format("must be a string (got {})", brief(j_)));
     return j_.get<std::string>();
   }
   std::string choice(const std::vector<std::string>& valid) const {
@@ -81,7 +177,7 @@ class Field {
     fail(fmt::format("= '{}' is not one of: {}", s, fmt::join(valid, ", ")));
   }
   Eigen::Vector3d vec3() const {
-    if (!j_.is_array() || j_.size() != 3) fail(fmt::format("must be an array of 3 numbers (got {})", j_.dump()));
+    if (!j_.is_array() || j_.size() != 3) fail(fmt::format("must be an array of 3 numbers (got {})", brief(j_)));
     Eigen::Vector3d v;
     for (int i = 0; i < 3; ++i) v[i] = item(i).number(-1e300, 1e300);
     return v;
@@ -125,6 +221,21 @@ void parse_shape(const Field& m, SceneShape& shape, const std::string& scene_fil
   }
 }
 
+// Refuses a generated mesh over the caps before anything is allocated: elements
+// (6 tets or 1 hex per cell) and nodes (the order-p lattice of the cells'
+// corners, an upper bound for the tube and the serendipity Hex20).
+void check_generated_size(const Field& f, const SceneShape& shape, CellType cell, int order) {
+  if (!f.has("box") && !f.has("tube")) return;
+  const long long nx = shape.cells.x(), ny = shape.cells.y(), nz = shape.cells.z();
+  const long long elements = nx * ny * nz * (cell == CellType::Tetrahedron ? 6 : 1);
+  const long long nodes = (order * nx + 1) * (order * ny + 1) * (order * nz + 1);
+  const std::string excess = mesh_size_excess(elements, nodes);
+  if (!excess.empty())
+    f.at(f.has("box") ? "box" : "tube").at("cells").fail(fmt::format("= [{}, {}, {}] ({} {}): {}", nx, ny, nz,
+                                                                      cell == CellType::Tetrahedron ? "tet" : "hex",
+                                                                      order, excess));
+}
+
 void parse_mesh(const Field& m, Scene& s) {
   m.keys({"box", "tube", "file", "cell", "order"});
   parse_shape(m, s.mesh, s.file);
@@ -133,7 +244,8 @@ void parse_mesh(const Field& m, Scene& s) {
     if (m.has("file")) m.at("cell").fail("is given by the .msh file; remove it");
     s.cell = m.at("cell").choice({"tet", "hex"}) == "hex" ? CellType::Hexahedron : CellType::Tetrahedron;
   }
-  s.order = m.has("order") ? m.at("order").integer(1, s.cell == CellType::Hexahedron ? 2 : 6) : 1;
+  s.order = m.has("order") ? m.at("order").integer(1, s.cell == CellType::Hexahedron ? 2 : input_limits().order) : 1;
+  check_generated_size(m, s.mesh, s.cell, s.order);
 }
 
 // "embedded": the geometry (Tet4 generators or a .msh of tets) and the finite-cell settings.
@@ -144,6 +256,7 @@ void parse_embedded(const Field& e, const Field& mesh, Scene& s) {
   if (e.has("drop_fraction")) emb.drop_fraction = e.at("drop_fraction").number(0.0, 1.0, false, true);
   if (e.has("stabilisation")) emb.stabilisation = e.at("stabilisation").number(0.0, 1.0);
   if (e.has("simplify")) emb.simplify = e.at("simplify").boolean();
+  check_generated_size(e, emb.shape, CellType::Tetrahedron, 1);
   // The cut-cell rules need affine background cells: the tube's are curved (order
   // 2) or not parallelepipeds (Hex8), so only a box grid or a straight .msh will do.
   if (s.mesh.tube)
@@ -153,6 +266,9 @@ void parse_embedded(const Field& e, const Field& mesh, Scene& s) {
 
 void parse_boundary(const Field& b, Scene& s) {
   if (!b.raw().is_array()) b.fail("must be an array of {\"nodes\", \"motion\"} objects");
+  if (static_cast<long long>(b.raw().size()) > input_limits().boundary_entries)
+    b.fail(fmt::format("has {} entries, over the cap of {} (raise it with --limit boundary-entries=N)", b.raw().size(),
+                       input_limits().boundary_entries));
   for (size_t i = 0; i < b.raw().size(); ++i) {
     const Field e = b.item(i);
     e.keys({"nodes", "motion", "release"});
@@ -198,15 +314,8 @@ void parse_boundary(const Field& b, Scene& s) {
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& origin) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // e.byte is the offset of the error; report the line.
-    const size_t byte = std::min<size_t>(e.byte, text.size());
-    const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(byte > 0 ? byte - 1 : 0), '\n');
-    throw SceneError(fmt::format("{}: line {}: not valid JSON ({})", origin, line, e.what()));
-  }
+  check_nesting(text, origin);
+  const json j = parse_json(text, origin);
   Scene s;
   s.file = origin;
   const Field root(j, "", origin);
@@ -283,14 +392,46 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
 }
 
 Scene read_scene(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw SceneError(fmt::format("{}: cannot open the scene file", path));
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), path);
+  std::string text;
+  try {
+    text = read_input_file(path, "the scene file", input_limits().scene_file_bytes);
+  } catch (const InputError& e) {
+    throw SceneError(e.what());
+  }
+  return parse_scene(text, path == "-" ? "<stdin>" : path);
 }
 
-Mesh build_scene_mesh(const Scene& s) {
+namespace {
+
+// The scene's mesh `key` after --reorient's flips (announced on stderr, never
+// silent) and validation; errors name the scene, the key and the element.
+Mesh validated(Mesh mesh, const Scene& s, const char* key) {
+  if (s.reorient) {
+    const std::vector<int> flipped = reorient_inverted_elements(mesh);
+    if (!flipped.empty())
+      fmt::print(stderr, "hofem: warning: {}: {}: --reorient renumbered {} inverted element(s), the first {}\n", s.file,
+                 key, flipped.size(), describe_element(mesh, flipped.front()));
+  }
+  try {
+    validate_mesh(mesh);
+  } catch (const MeshError& e) {
+    throw SceneError(fmt::format("{}: {}: {}", s.file, key, e.what()));
+  }
+  return mesh;
+}
+
+Mesh build_unchecked_scene_mesh(const Scene& s);
+Mesh build_unchecked_embedded_mesh(const Scene& s);
+
+}  // namespace
+
+Mesh build_scene_mesh(const Scene& s) { return validated(build_unchecked_scene_mesh(s), s, "mesh"); }
+
+Mesh build_embedded_mesh(const Scene& s) { return validated(build_unchecked_embedded_mesh(s), s, "embedded"); }
+
+namespace {
+
+Mesh build_unchecked_scene_mesh(const Scene& s) {
   const SceneShape& m = s.mesh;
   if (m.tube)
     return hollow_cylinder_mesh(m.tube_r_in, m.tube_r_out, m.tube_height, m.cells.x(), m.cells.y(), m.cells.z(), s.cell,
@@ -313,7 +454,7 @@ Mesh build_scene_mesh(const Scene& s) {
   return upgrade_order(mesh, s.order);
 }
 
-Mesh build_embedded_mesh(const Scene& s) {
+Mesh build_unchecked_embedded_mesh(const Scene& s) {
   if (!s.embedded) throw std::logic_error("build_embedded_mesh: the scene has no embedded geometry");
   const SceneShape& g = s.embedded->shape;
   if (g.tube)
@@ -335,6 +476,8 @@ Mesh build_embedded_mesh(const Scene& s) {
                     s.file, g.file));
   return mesh;
 }
+
+}  // namespace
 
 std::vector<int> boundary_nodes(const Scene& s, const Mesh& mesh, size_t index) {
   const SceneBoundary& b = s.boundary.at(index);

@@ -1,6 +1,7 @@
 #include "scene/scene_runner.hpp"
 
 #include "material/material.hpp"
+#include "mesh/atomic_file.hpp"
 #include "mesh/vtu_writer.hpp"
 #include "problem/static_elasticity.hpp"
 #include "scene/scene_embedding.hpp"
@@ -15,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <regex>
 #include <unistd.h>
 
 namespace hofem {
@@ -104,24 +106,61 @@ json stats_json(const DynamicsStats& st) {
               {"solve_seconds", st.solve_seconds}};
 }
 
+// Removes what an earlier run wrote into the output directory - frames, .pvd
+// indexes, stats.json, partial files of a killed run - so that a run's folder
+// never mixes two runs (a frame 40 of the old run beside frames 0-20 of the new
+// one would pass for a longer run). Other files are left alone.
+int clear_earlier_output(const std::string& out_dir) {
+  static const std::regex kOurs(R"((frame_\d+(_surface)?\.vtu|.*\.pvd|stats\.json)(\.partial-\d+)?)");
+  int removed = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(out_dir, ec)) {
+    if (!entry.is_regular_file(ec) || !std::regex_match(entry.path().filename().string(), kOurs)) continue;
+    removed += std::filesystem::remove(entry.path(), ec) ? 1 : 0;
+  }
+  return removed;
+}
+
+SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const SceneRunOptions& options, bool writer,
+                            Clock::time_point t_start);
+
 }  // namespace
 
-SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const SceneRunOptions& input_options) {
+SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const SceneRunOptions& options) {
   const auto t_start = Clock::now();
-  SceneRunOptions options = input_options;
   int rank = 0;
   if (options.distributed) {
     ensure_hypre();
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   }
   const bool writer = rank == 0;  // distributed: one rank writes
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (ec) throw SceneError(fmt::format("{}: cannot create the output directory '{}': {}", s.file, out_dir, ec.message()));
+  if (writer) clear_earlier_output(out_dir);
+  try {
+    return run_scene_in(s, out_dir, options, writer, t_start);
+  } catch (const std::exception& e) {
+    // A run that stops on an error still leaves a stats.json, which says so and why.
+    if (writer)
+      write_file_atomically((std::filesystem::path(out_dir) / "stats.json").string(),
+                            json{{"scene", s.name}, {"file", s.file}, {"status", "failed"}, {"ok", false},
+                                 {"message", e.what()},
+                                 {"wall_seconds", std::chrono::duration<double>(Clock::now() - t_start).count()}}
+                                    .dump(1) +
+                                "\n");
+    throw;
+  }
+}
+
+namespace {
+
+SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const SceneRunOptions& options, bool writer,
+                            Clock::time_point t_start) {
   // A distributed run's fields live on the ranks' pieces of the mesh: gathered
   // to the writer in global order (one VTU per frame, one stats file).
   auto nodal = [](const DistributedMesh* d, const Eigen::VectorXd& v) { return d ? d->gather_nodal(v) : v; };
   auto elemental = [](const DistributedMesh* d, const Eigen::VectorXd& v) { return d ? d->gather_elemental(v) : v; };
-  std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
-  if (ec) throw SceneError(fmt::format("{}: cannot create the output directory '{}': {}", s.file, out_dir, ec.message()));
   const Mesh mesh = build_scene_mesh(s);
   std::optional<SceneEmbedding> embedding;
   if (s.embedded) embedding.emplace(s, mesh);
@@ -265,14 +304,14 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     if (emb) emb->write_pvd(out_dir, s.name);
   }
   st["frames"] = frames.size();
+  st["status"] = result.ok ? "completed" : "failed";
   st["ok"] = result.ok;
   st["message"] = result.message;
   st["wall_seconds"] = std::chrono::duration<double>(Clock::now() - t_start).count();
-  const std::string stats_path = (std::filesystem::path(out_dir) / "stats.json").string();
-  std::ofstream out(stats_path);
-  if (!out) throw SceneError(fmt::format("cannot write '{}'", stats_path));
-  out << st.dump(1) << "\n";
+  write_file_atomically((std::filesystem::path(out_dir) / "stats.json").string(), st.dump(1) + "\n");
   return result;
 }
+
+}  // namespace
 
 }  // namespace hofem

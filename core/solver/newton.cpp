@@ -18,12 +18,14 @@ void shift_diagonal(SparseMatrix& K, double s) {
       if (it.row() == c) it.valueRef() += s;
 }
 
-double mean_abs_diagonal(const SparseMatrix& K) {
-  double sum = 0.0;
-  for (Eigen::Index c = 0; c < K.outerSize(); ++c)
-    for (SparseMatrix::InnerIterator it(K, c); it; ++it)
-      if (it.row() == c) sum += std::fabs(it.value());
-  return K.rows() > 0 ? sum / static_cast<double>(K.rows()) : 1.0;
+// Mean |K_ii| over the whole system: through the problem's dot product, so that
+// on a distributed problem every rank shifts by the same amount (a rank-local
+// mean would shift the ranks' rows differently and break the symmetry).
+double mean_abs_diagonal(const NonlinearProblem& problem, const SparseMatrix& K) {
+  const Eigen::VectorXd abs_diagonal = K.diagonal().cwiseAbs();
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(abs_diagonal.size());
+  const double count = problem.dot(ones, ones);
+  return count > 0.0 ? problem.dot(abs_diagonal, ones) / count : 1.0;
 }
 
 constexpr double kDescentCosine = 1e-12;
@@ -57,7 +59,7 @@ void descent_fallback(NonlinearProblem& problem, const Eigen::VectorXd& u, Eigen
       return;
     }
   }
-  const double base = mean_abs_diagonal(K);
+  const double base = mean_abs_diagonal(problem, K);
   for (int k = 0; k < 12; ++k) {
     const double s = (shift == 0.0 ? 1e-8 * base : 10.0 * shift);
     shift_diagonal(K, s - shift);
@@ -126,7 +128,7 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
     }
     double shift = 0.0;
     for (int k = 0; !ok && k < 20; ++k) {  // projection is per point; the sum can still be singular
-      const double s = (shift == 0.0 ? 1e-8 : 10.0) * (shift == 0.0 ? mean_abs_diagonal(K) : shift);
+      const double s = (shift == 0.0 ? 1e-8 : 10.0) * (shift == 0.0 ? mean_abs_diagonal(problem, K) : shift);
       shift_diagonal(K, s - shift);
       shift = s;
       ok = solver.factorize(K);
