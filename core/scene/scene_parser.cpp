@@ -36,7 +36,7 @@ std::string brief(const json& j) {
   return s;
 }
 
-// Refuses nesting deeper than the cap before parsing: the scene format nests 5
+// Refuses NUL bytes and nesting deeper than the cap before parsing: the scene format nests 5
 // levels, and a value nested 10^5 deep would exhaust the stack of any recursive
 // consumer (nlohmann's dump and destructor included). Brackets inside strings do
 // not count.
@@ -47,6 +47,9 @@ void check_nesting(const std::string& text, const std::string& origin) {
   bool in_string = false, escaped = false;
   for (const char c : text) {
     if (c == '\n') ++line;
+    // nlohmann's parser stops at a NUL as at the end of the text, silently
+    // ignoring the rest: a NUL is refused (a scene is text).
+    if (c == '\0') throw SceneError(fmt::format("{}: line {}: a NUL byte: not a text file", origin, line));
     if (in_string) {
       if (escaped) escaped = false;
       else if (c == '\\') escaped = true;
@@ -78,6 +81,7 @@ json parse_json(const std::string& text, const std::string& origin) {
     bool array;
     std::string key;
     long index;
+    std::set<std::string> keys;  // seen in this object: JSON allows duplicates, the last would win silently
   };
   std::vector<Frame> frames;
   auto path = [&frames] {
@@ -91,9 +95,13 @@ json parse_json(const std::string& text, const std::string& origin) {
   };
   const json::parser_callback_t track = [&](int, json::parse_event_t event, json& parsed) {
     switch (event) {
-      case json::parse_event_t::object_start: frames.push_back({false, "", 0}); break;
-      case json::parse_event_t::array_start: frames.push_back({true, "", 0}); break;
-      case json::parse_event_t::key: frames.back().key = parsed.get<std::string>(); break;
+      case json::parse_event_t::object_start: frames.push_back({false, "", 0, {}}); break;
+      case json::parse_event_t::array_start: frames.push_back({true, "", 0, {}}); break;
+      case json::parse_event_t::key:
+        frames.back().key = parsed.get<std::string>();
+        if (!frames.back().keys.insert(frames.back().key).second)
+          throw SceneError(fmt::format("{}: {}: the key appears twice in its object", origin, path()));
+        break;
       case json::parse_event_t::value: next_item(); break;
       case json::parse_event_t::object_end:
       case json::parse_event_t::array_end:

@@ -74,8 +74,6 @@ namespace hofem {
 //   the same time: the cycle dominates either way.
 // P3 (n = 10, 86,490 unknowns): 33 / 35 / 46 iterations for amg / nodal / aggressive.
 
-std::vector<std::string> boomeramg_variant_names() { return {"amg", "amg-nodal", "amg-aggressive"}; }
-
 BoomerAmgOptions boomeramg_options(std::string_view variant) {
   BoomerAmgOptions o;  // "amg": the defaults of BoomerAmgOptions, chosen above
   if (variant == "amg") return o;

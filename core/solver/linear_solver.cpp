@@ -41,13 +41,6 @@ class EigenLdltSolver final : public LinearSolver {
 
 }  // namespace
 
-std::vector<std::string> linear_solver_names() {
-  std::vector<std::string> names{"cholmod", "umfpack", "eigen-ldlt", "hypre-pcg+amg"};
-  for (const char* method : {"cg", "cr", "minres", "gmres"})
-    for (const std::string& pc : preconditioner_names()) names.push_back(std::string(method) + "+" + pc);
-  return names;
-}
-
 std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name) {
   if (name == "cholmod") return std::make_unique<CholmodSolver>();
   if (name == "eigen-ldlt") return std::make_unique<EigenLdltSolver>();

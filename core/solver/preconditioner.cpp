@@ -126,14 +126,6 @@ class EigenIncompleteCholeskyPreconditioner final : public Preconditioner {
 
 }  // namespace
 
-std::vector<std::string> preconditioner_names() {
-  std::vector<std::string> names{"none", "jacobi", "block-jacobi", "ic0", "eigen-ict"};
-  for (const std::string& v : boomeramg_variant_names()) names.push_back(v);
-  names.push_back("pmg");
-  names.push_back("schwarz");
-  return names;
-}
-
 bool preconditioner_needs_discretization(std::string_view name) { return name == "pmg" || name == "schwarz"; }
 
 std::unique_ptr<Preconditioner> make_preconditioner(std::string_view name) {

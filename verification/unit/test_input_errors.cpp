@@ -136,6 +136,16 @@ TEST(SceneInput, NumberOverflowNamesFileAndKey) {
   EXPECT_NE(a.find("g.json: gravity[1]: a number out of the range"), std::string::npos) << a;
 }
 
+TEST(SceneInput, NulBytesAndDuplicateKeysAreRefused) {
+  // nlohmann's parser would stop at the NUL and ignore the rest of the file.
+  const std::string nul = std::string("{\"name\": \"a\"}\n") + '\0' + "{\"garbage\": 1}";
+  std::string m = message_of<SceneError>([&] { parse_scene(nul, "nul.json"); });
+  EXPECT_NE(m.find("nul.json: line 2: a NUL byte"), std::string::npos) << m;
+  // JSON allows a key twice (the last wins); a scene must not say two things.
+  m = message_of<SceneError>([] { parse_scene(R"({"material": {"young": 1e5, "young": 1e9}})", "dup.json"); });
+  EXPECT_NE(m.find("dup.json: material.young: the key appears twice in its object"), std::string::npos) << m;
+}
+
 TEST(SceneInput, HugeBoxIsRefusedBeforeAllocating) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string m = message_of<SceneError>([] { read_scene(kData + "/bad_scene_box_1000.json"); });
