@@ -14,7 +14,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <regex>
 #include <unistd.h>
@@ -110,15 +109,13 @@ json stats_json(const DynamicsStats& st) {
 // indexes, stats.json, partial files of a killed run - so that a run's folder
 // never mixes two runs (a frame 40 of the old run beside frames 0-20 of the new
 // one would pass for a longer run). Other files are left alone.
-int clear_earlier_output(const std::string& out_dir) {
+void clear_earlier_output(const std::string& out_dir) {
   static const std::regex kOurs(R"((frame_\d+(_surface)?\.vtu|.*\.pvd|stats\.json)(\.partial-\d+)?)");
-  int removed = 0;
   std::error_code ec;
-  for (const auto& entry : std::filesystem::directory_iterator(out_dir, ec)) {
-    if (!entry.is_regular_file(ec) || !std::regex_match(entry.path().filename().string(), kOurs)) continue;
-    removed += std::filesystem::remove(entry.path(), ec) ? 1 : 0;
-  }
-  return removed;
+  for (const auto& entry : std::filesystem::directory_iterator(out_dir, ec))
+    if (entry.is_regular_file(ec) && std::regex_match(entry.path().filename().string(), kOurs) &&
+        !std::filesystem::remove(entry.path(), ec) && ec)
+      throw SceneError(fmt::format("cannot remove '{}' of an earlier run: {}", entry.path().string(), ec.message()));
 }
 
 SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const SceneRunOptions& options, bool writer,

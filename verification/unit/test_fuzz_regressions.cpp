@@ -56,16 +56,19 @@ void expect_documented(const Error& e, const std::string& origin) {
   EXPECT_EQ(what.rfind(origin + ":", 0), 0u) << what;
 }
 
-TEST(FuzzRegressions, GmshReader) {
-  const auto files = inputs("gmsh_reader");
+// Replays every input of a target's folder through `parse`: it must succeed or
+// throw the documented Error naming the input, nothing else.
+template <class Error, class Parse>
+void replay(const std::string& target, Parse parse) {
+  const auto files = inputs(target);
   ASSERT_FALSE(files.empty());
   for (const auto& path : files) {
     SCOPED_TRACE(path.string());
     announce(path.string());
     const std::string origin = path.filename().string();
     try {
-      read_gmsh_text(read_bytes(path), origin);
-    } catch (const MeshError& e) {
+      parse(read_bytes(path), origin);
+    } catch (const Error& e) {
       expect_documented(e, origin);
     } catch (const std::exception& e) {
       ADD_FAILURE() << "undocumented exception: " << e.what();
@@ -75,23 +78,12 @@ TEST(FuzzRegressions, GmshReader) {
   }
 }
 
+TEST(FuzzRegressions, GmshReader) {
+  replay<MeshError>("gmsh_reader", [](const std::string& text, const std::string& origin) { read_gmsh_text(text, origin); });
+}
+
 TEST(FuzzRegressions, SceneParser) {
-  const auto files = inputs("scene_parser");
-  ASSERT_FALSE(files.empty());
-  for (const auto& path : files) {
-    SCOPED_TRACE(path.string());
-    announce(path.string());
-    const std::string origin = path.filename().string();
-    try {
-      parse_scene(read_bytes(path), origin);
-    } catch (const SceneError& e) {
-      expect_documented(e, origin);
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << "undocumented exception: " << e.what();
-    } catch (...) {
-      ADD_FAILURE() << "non-standard exception";
-    }
-  }
+  replay<SceneError>("scene_parser", [](const std::string& text, const std::string& origin) { parse_scene(text, origin); });
 }
 
 // Nesting far deeper than any scene, generated rather than committed (~200 KB
