@@ -11,11 +11,14 @@
 //     their module names (exported so that Open MPI's calls reach this one);
 //  2. the suppressions below name Open MPI's libraries and components. They match
 //     a frame of the allocating stack, so hofem's own leaks are still reported.
+//
+// Weak definitions: the archive reaches an executable once per static library
+// it links (link_libraries in CMakeLists.txt), and duplicates must not clash.
 extern "C" {
 
-int dlclose(void*) { return 0; }
+__attribute__((weak)) int dlclose(void*) { return 0; }
 
-const char* __lsan_default_suppressions() {
+__attribute__((weak)) const char* __lsan_default_suppressions() {
   return "leak:libmpi.so\n"
          "leak:libopen-pal.so\n"
          "leak:libopen-rte.so\n"
