@@ -24,6 +24,7 @@
 #include "parallel/mpi_runtime.hpp"
 #include <nlohmann/json.hpp>
 
+#include <climits>
 #include <filesystem>
 #include <fstream>
 
@@ -49,9 +50,11 @@ void apply_limits(const std::vector<std::string>& limits) {
 
 // A unit-cube mesh of n cells per side over the caps is refused before it is built.
 void check_cube_size(int n, CellType cell, int order, const char* option) {
-  const long long c = n, p = order;
+  // In double: n^3 of an int n overflows long long (n > 2e6).
+  const auto count = [](double v) { return v < 9e18 ? static_cast<long long>(v) : LLONG_MAX; };
+  const double c = n, side = double(order) * n + 1.0;
   const std::string excess =
-      mesh_size_excess(c * c * c * (cell == CellType::Tetrahedron ? 6 : 1), (p * c + 1) * (p * c + 1) * (p * c + 1));
+      mesh_size_excess(count(c * c * c * (cell == CellType::Tetrahedron ? 6 : 1)), count(side * side * side));
   if (!excess.empty()) throw UsageError(fmt::format("{} {}: {}", option, n, excess));
 }
 
