@@ -115,10 +115,18 @@ struct Scene {
   bool reorient = false;
 };
 
+/// Overrides of a scene's keys, "key.path=VALUE" ("mesh.order=2",
+/// "boundary.0.release=1.5", "mesh.cell=hex"): VALUE is JSON, or a string when it
+/// is not valid JSON. They are applied to the JSON before validation, so an
+/// overridden value is checked exactly like one in the file; a path through a
+/// value that is not an object (or an array, for a numeric segment) is refused.
+/// The one override mechanism of studies and the command line.
+using SceneOverrides = std::vector<std::string>;
+
 /// Parses and validates a scene file; throws SceneError naming the file and key.
-Scene read_scene(const std::string& path);
+Scene read_scene(const std::string& path, const SceneOverrides& overrides = {});
 /// The same for JSON text; `origin` names it in messages.
-Scene parse_scene(const std::string& text, const std::string& origin);
+Scene parse_scene(const std::string& text, const std::string& origin, const SceneOverrides& overrides = {});
 
 /// Builds the scene's mesh (generator or .msh, upgraded to the order) and
 /// validates it: an inverted or degenerate element is a SceneError naming the

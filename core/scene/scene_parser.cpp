@@ -317,11 +317,55 @@ void parse_boundary(const Field& b, Scene& s) {
   }
 }
 
+
+// Applies one "key.path=VALUE" override to the scene's JSON (scene.hpp).
+void apply_override(json& root, const std::string& item, const std::string& origin) {
+  const std::size_t eq = item.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw SceneError(fmt::format("{}: override '{}' is not key.path=VALUE", origin, item));
+  const std::string path = item.substr(0, eq), text = item.substr(eq + 1);
+  json value = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (value.is_discarded()) value = text;  // mesh.cell=hex: a bare word is a string
+  json* at = &root;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t dot = path.find('.', start);
+    const std::string key = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    const std::string so_far = path.substr(0, dot == std::string::npos ? path.size() : dot);
+    if (key.empty()) throw SceneError(fmt::format("{}: override '{}': empty key in '{}'", origin, item, path));
+    const bool index = key.find_first_not_of("0123456789") == std::string::npos && key.size() < 10;
+    if (index && at->is_array()) {
+      const std::size_t i = std::stoul(key);
+      if (i >= at->size())
+        throw SceneError(fmt::format("{}: override '{}': {} is past the end of an array of {}", origin, item, so_far,
+                                     at->size()));
+      at = &(*at)[i];
+    } else if (at->is_object()) {
+      at = &(*at)[key];  // a new key is added, then validated like any other
+    } else {
+      throw SceneError(fmt::format("{}: override '{}': {} is inside a value that is not an object", origin, item,
+                                   so_far));
+    }
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  *at = std::move(value);
+}
+
+Scene parse_validated(const json& j, const std::string& origin);
+
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& origin) {
+Scene parse_scene(const std::string& text, const std::string& origin, const SceneOverrides& overrides) {
   check_nesting(text, origin);
-  const json j = parse_json(text, origin);
+  json j = parse_json(text, origin);
+  for (const std::string& o : overrides) apply_override(j, o, origin);
+  return parse_validated(j, origin);
+}
+
+namespace {
+
+Scene parse_validated(const json& j, const std::string& origin) {
   Scene s;
   s.file = origin;
   const Field root(j, "", origin);
@@ -397,14 +441,16 @@ Scene parse_scene(const std::string& text, const std::string& origin) {
   return s;
 }
 
-Scene read_scene(const std::string& path) {
+}  // namespace
+
+Scene read_scene(const std::string& path, const SceneOverrides& overrides) {
   std::string text;
   try {
     text = read_input_file(path, "the scene file", input_limits().scene_file_bytes);
   } catch (const InputError& e) {
     throw SceneError(e.what());
   }
-  return parse_scene(text, path == "-" ? "<stdin>" : path);
+  return parse_scene(text, path == "-" ? "<stdin>" : path, overrides);
 }
 
 namespace {

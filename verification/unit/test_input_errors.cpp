@@ -175,6 +175,30 @@ TEST(SceneInput, OrderAndBoundaryEntriesHaveCaps) {
   EXPECT_NE(m.find("b.json: boundary has 10001 entries, over the cap of 10000"), std::string::npos) << m;
 }
 
+TEST(SceneOverrides, ValuesAreAppliedThenValidatedLikeTheFile) {
+  const std::string tiny = kData + "/scene_tiny.json";
+  // JSON values, bare words as strings, array elements by index.
+  const Scene s = read_scene(tiny, {"mesh.order=2", "mesh.cell=hex", "gravity.2=-1.5", "material.young=2e5"});
+  EXPECT_EQ(s.order, 2);
+  EXPECT_EQ(s.cell, CellType::Hexahedron);
+  EXPECT_EQ(s.dynamics.gravity.z(), -1.5);
+  EXPECT_EQ(s.young, 2e5);
+  // An overridden value is validated exactly like one in the file.
+  std::string m = message_of<SceneError>([&] { read_scene(tiny, {"material.poisson=0.5"}); });
+  EXPECT_NE(m.find("scene_tiny.json: material.poisson = 0.5 is out of range (-1, 0.5)"), std::string::npos) << m;
+  m = message_of<SceneError>([&] { read_scene(tiny, {"material.youngs=1"}); });
+  EXPECT_NE(m.find("key 'material.youngs' is unknown"), std::string::npos) << m;
+  m = message_of<SceneError>([&] { read_scene(tiny, {"mesh.order=eight"}); });
+  EXPECT_NE(m.find("mesh.order must be an integer (got \"eight\")"), std::string::npos) << m;
+  // Malformed overrides are named.
+  m = message_of<SceneError>([&] { read_scene(tiny, {"mesh.order"}); });
+  EXPECT_NE(m.find("override 'mesh.order' is not key.path=VALUE"), std::string::npos) << m;
+  m = message_of<SceneError>([&] { read_scene(tiny, {"dt.x=1"}); });
+  EXPECT_NE(m.find("override 'dt.x=1': dt.x is inside a value that is not an object"), std::string::npos) << m;
+  m = message_of<SceneError>([&] { read_scene(tiny, {"gravity.3=0"}); });
+  EXPECT_NE(m.find("gravity.3 is past the end of an array of 3"), std::string::npos) << m;
+}
+
 TEST(MeshInput, InvertedTet10NamesFileLineAndTag) {
   const Mesh mesh = read_gmsh(kData + "/bad_inverted_tet10.msh");
   const std::string m = message_of<MeshError>([&] { validate_mesh(mesh); });
