@@ -135,9 +135,4 @@ std::string mesh_size_excess(long long elements, long long nodes) {
   return {};
 }
 
-void check_mesh_size(long long elements, long long nodes, std::string_view where) {
-  const std::string excess = mesh_size_excess(elements, nodes);
-  if (!excess.empty()) throw InputError(fmt::format("{}: {}", where, excess));
-}
-
 }  // namespace hofem

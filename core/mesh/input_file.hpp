@@ -58,7 +58,4 @@ std::string read_input_file(const std::string& path, std::string_view what, std:
 /// generator allocates.
 std::string mesh_size_excess(long long elements, long long nodes);
 
-/// Throws InputError "<where>: <mesh_size_excess>" when the mesh is over the caps.
-void check_mesh_size(long long elements, long long nodes, std::string_view where);
-
 }  // namespace hofem

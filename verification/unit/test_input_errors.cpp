@@ -11,7 +11,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -54,11 +53,10 @@ struct LimitsGuard {
 };
 
 TEST(InputFile, CharacterDeviceIsRefusedBeforeReading) {
-  const auto t0 = std::chrono::steady_clock::now();
+  // Refused by its kind, not read up to the size cap (that would end in "over the
+  // cap" after 2 GiB of zeros; a hang without a cap).
   const std::string m = message_of<MeshError>([] { read_gmsh("/dev/zero"); });
   EXPECT_NE(m.find("/dev/zero: cannot read the mesh file: it is a character device"), std::string::npos) << m;
-  // Refused, not read to a cap: far below the time to read 2 GiB of zeros.
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
 }
 
 TEST(InputFile, SceneWhoseMeshIsACharacterDeviceNamesSceneKeyAndDevice) {
@@ -147,13 +145,12 @@ TEST(SceneInput, NulBytesAndDuplicateKeysAreRefused) {
 }
 
 TEST(SceneInput, HugeBoxIsRefusedBeforeAllocating) {
-  const auto t0 = std::chrono::steady_clock::now();
+  // Refused while parsing (parse_scene builds no mesh), by the cap's message.
   const std::string m = message_of<SceneError>([] { read_scene(kData + "/bad_scene_box_1000.json"); });
   EXPECT_NE(m.find("bad_scene_box_1000.json: mesh.box.cells = [1000, 1000, 1000] (tet 1): 6000000000 elements exceed "
                    "the cap of 20000000 (raise it with --limit elements=N)"),
             std::string::npos)
       << m;
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
   // The cap is a cap: raised, the same file parses (the mesh is not built here).
   LimitsGuard guard;
   set_input_limit("elements=1e10");
