@@ -70,12 +70,18 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   run->add_flag("--distributed", ro.distributed,
                 "Partition the elements over the MPI ranks (static and implicit-Euler scenes; mpirun -np K; rank 0 writes)");
 
+  auto& so = out.study;
+  auto* study = app.add_subcommand("study", "Run a study: a scene's discretisations against a reference, time against error");
+  study->add_option("study", so.study, "Study file (JSON; scripts/studies/ has the built-in ones)")->required();
+  study->add_option("--out", so.out, "Output directory (default: reports/studies/NAME)");
+
   // Input caps (mesh/input_file.hpp), raised per run; validated in commands.cpp.
   const std::string limit_help = "Raise an input cap: NAME=VALUE, NAME one of mesh-file-mb, scene-file-kb, elements, "
                                  "nodes, order, json-depth, boundary-entries (repeatable; README: input caps)";
   mesh->add_option("--limit", out.mesh.limits, limit_help)->allow_extra_args(false);
   mms->add_option("--limit", out.mms.limits, limit_help)->allow_extra_args(false);
   run->add_option("--limit", out.run.limits, limit_help)->allow_extra_args(false);
+  study->add_option("--limit", out.study.limits, limit_help)->allow_extra_args(false);
   const std::string reorient_help =
       "Renumber straight inverted elements of the .msh (left-handed node order) and warn; curved or folded ones stay errors";
   mesh->add_flag("--reorient", out.mesh.reorient, reorient_help);
@@ -87,7 +93,7 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
     bool known = false;
     for (const auto* sub : app.get_subcommands({})) known = known || sub->get_name() == first;
     if (!known) {
-      fmt::print(err_stream, "hofem: error: unknown subcommand '{}' (valid: quadrature, basis, mesh, mms, verify, run)\n", first);
+      fmt::print(err_stream, "hofem: error: unknown subcommand '{}' (valid: quadrature, basis, mesh, mms, verify, run, study)\n", first);
       return 2;
     }
   }
@@ -112,7 +118,7 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
     return 2;
   }
 
-  for (const auto* sub : {quad, basis, mesh, mms, verify, run})
+  for (const auto* sub : {quad, basis, mesh, mms, verify, run, study})
     if (*sub) out.subcommand = sub->get_name();
   return -1;
 }

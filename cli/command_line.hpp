@@ -12,13 +12,14 @@ namespace hofem::cli {
 /// Everything the command line selects: the subcommand's name and every
 /// subcommand's options (only the chosen one's are filled in).
 struct CommandLine {
-  std::string subcommand;  ///< "quadrature", "basis", "mesh", "mms", "verify" or "run"
+  std::string subcommand;  ///< "quadrature", "basis", "mesh", "mms", "verify", "run" or "study"
   QuadratureOptions quadrature;
   BasisOptions basis;
   MeshOptions mesh;
   MmsOptions mms;
   VerifyOptions verify;
   RunOptions run;
+  StudyOptions study;
 };
 
 /// Parses argv (argv[0] the program name). Returns -1 when `out.subcommand` should

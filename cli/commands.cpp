@@ -17,6 +17,7 @@
 
 #include "scene/scene.hpp"
 #include "scene/scene_runner.hpp"
+#include "study/study.hpp"
 
 #include <fmt/format.h>
 #include <mpi.h>
@@ -330,6 +331,25 @@ int run_scene_file(const RunOptions& o) {
   if (options.progress || !o.distributed)  // distributed: rank 0 reports
     fmt::print("{}: {} ({}) -> {}/stats.json\n", scene.name, r.ok ? "done" : "FAILED", r.message, o.out);
   return r.ok ? 0 : 1;
+}
+
+int run_study_file(const StudyOptions& o) {
+  apply_limits(o.limits);
+  Study study;
+  try {
+    study = read_study(o.study);
+  } catch (const SceneError& e) {
+    throw UsageError(e.what());
+  }
+  const std::string out = o.out.empty() ? "reports/studies/" + study.name : o.out;
+  try {
+    const nlohmann::json j = run_study(study, out, {.progress = true});
+    fmt::print("study {}: {} runs -> {}/study.json\n", study.name, j["runs"].size(), out);
+  } catch (const SceneError& e) {
+    fmt::print(stderr, "hofem: error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
 }
 
 }  // namespace hofem::cli

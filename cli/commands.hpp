@@ -80,4 +80,14 @@ struct RunOptions {
 /// still written), 2 for an invalid scene (the message names the file and key).
 int run_scene_file(const RunOptions& o);
 
+struct StudyOptions {
+  std::string study;
+  std::string out;                  ///< default: reports/studies/NAME (NAME from the study file)
+  std::vector<std::string> limits;  ///< --limit NAME=VALUE
+};
+/// Runs a study (core/study/study_file.hpp) and writes study.json and summary.md.
+/// Exit status 0 when the study ran (runs that fail are rows of the table), 2 for
+/// an invalid study or scene, 1 when the reference fails.
+int run_study_file(const StudyOptions& o);
+
 }  // namespace hofem::cli

@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
     if (sub == "mms") return hofem::cli::run_mms(cl.mms);
     if (sub == "mesh") return hofem::cli::run_mesh(cl.mesh);
     if (sub == "run") return hofem::cli::run_scene_file(cl.run);
+    if (sub == "study") return hofem::cli::run_study_file(cl.study);
   } catch (const hofem::cli::UsageError& e) {
     fmt::print(stderr, "hofem: error: {}\n", e.what());
     return 2;

@@ -38,9 +38,10 @@ std::shared_ptr<const ElementQuadrature> empty_rule(CellType cell, int order) {
 
 }  // namespace
 
-AffineCell affine_cell(const Mesh& mesh, int e) {
-  // Least-squares fit of X = origin + A xi over all nodes, then every node must
-  // lie on it: this accepts straight-sided higher-order cells and parallelepipeds.
+AffineFit fit_affine_cell(const Mesh& mesh, int e) {
+  // Least-squares fit of X = origin + A xi over all nodes; the misfit says
+  // whether every node lies on it (straight-sided higher-order cells and
+  // parallelepipeds do).
   const Eigen::MatrixXd& ref = lagrange_basis(mesh.cell, mesh.order).nodes();
   const int n = mesh.nodes_per_element();
   Eigen::MatrixXd B(n, 4), X(n, 3);
@@ -50,20 +51,27 @@ AffineCell affine_cell(const Mesh& mesh, int e) {
     X.row(i) = mesh.nodes.col(mesh.elements(i, e)).transpose();
   }
   const Eigen::MatrixXd C = (B.transpose() * B).ldlt().solve(B.transpose() * X);  // 4 x 3
-  AffineCell map;
-  map.origin = C.row(0).transpose();
-  map.A = C.bottomRows(3).transpose();
-  const double size = (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
-  const double misfit = (B * C - X).cwiseAbs().maxCoeff();
-  if (!(misfit <= 1e-10 * size))
+  AffineFit fit;
+  fit.map.origin = C.row(0).transpose();
+  fit.map.A = C.bottomRows(3).transpose();
+  fit.size = (X.colwise().maxCoeff() - X.colwise().minCoeff()).norm();
+  fit.misfit = (B * C - X).cwiseAbs().maxCoeff();
+  fit.affine = fit.misfit <= 1e-10 * fit.size;
+  fit.degenerate = !(std::abs(fit.map.A.determinant()) > 1e-12 * std::pow(fit.size, 3));
+  if (!fit.degenerate) fit.map.A_inverse = fit.map.A.inverse();
+  return fit;
+}
+
+AffineCell affine_cell(const Mesh& mesh, int e) {
+  const AffineFit fit = fit_affine_cell(mesh, e);
+  if (!fit.affine)
     throw std::invalid_argument(fmt::format(
         "finite cell: background element {} is not affine (node misfit {:.3g} of size {:.3g}); curved cells are not supported",
-        e, misfit, size));
-  const double det = map.A.determinant();
-  if (!(std::abs(det) > 1e-12 * std::pow(size, 3)))
-    throw std::invalid_argument(fmt::format("finite cell: background element {} is degenerate (det J = {:.3g})", e, det));
-  map.A_inverse = map.A.inverse();
-  return map;
+        e, fit.misfit, fit.size));
+  if (fit.degenerate)
+    throw std::invalid_argument(fmt::format("finite cell: background element {} is degenerate (det J = {:.3g})", e,
+                                            fit.map.A.determinant()));
+  return fit.map;
 }
 
 std::vector<HalfSpace> cell_half_spaces(CellType cell, const AffineCell& map) {

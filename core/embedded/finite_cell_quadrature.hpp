@@ -56,6 +56,16 @@ struct AffineCell {
   Eigen::Matrix3d A_inverse;
   Eigen::Vector3d reference(const Eigen::Vector3d& X) const { return A_inverse * (X - origin); }
 };
+/// The least-squares affine fit of a cell's nodes; for a curved cell (affine
+/// false) a starting guess of the inverse map.
+struct AffineFit {
+  AffineCell map;            ///< A_inverse set unless degenerate
+  double misfit = 0.0;       ///< largest node distance from the fitted map
+  double size = 0.0;         ///< the nodes' bounding-box diagonal
+  bool affine = false;       ///< misfit <= 1e-10 size
+  bool degenerate = false;   ///< |det A| <= 1e-12 size^3
+};
+AffineFit fit_affine_cell(const Mesh& mesh, int element);
 /// Throws std::invalid_argument naming the element if its nodes are not an
 /// affine image of the reference element (to 1e-10 of its size) or A is singular.
 AffineCell affine_cell(const Mesh& mesh, int element);

@@ -12,35 +12,37 @@
 
 namespace hofem {
 
-Mesh hollow_cylinder_mesh(double r_in, double r_out, double height, int n_r, int n_theta, int n_z, CellType cell,
-                          int order) {
-  if (!(r_in > 0.0 && r_out > r_in && height > 0.0) || n_r < 1 || n_z < 1 || n_theta < 3)
-    throw std::invalid_argument(fmt::format(
-        "hollow_cylinder_mesh: needs 0 < r_in < r_out, height > 0, n_r, n_z >= 1, n_theta >= 3 (got r_in = {}, "
-        "r_out = {}, height = {}, n = {} x {} x {})",
-        r_in, r_out, height, n_r, n_theta, n_z));
-  const double two_pi = 2.0 * M_PI;
-  Mesh box = box_mesh(BoxSpec{{r_in, 0.0, 0.0}, {r_out, two_pi, height}, {n_r, n_theta, n_z}}, cell, order);
-  // Nodes on theta = 2 pi become the theta = 0 node with the same (r, z): the
-  // generator places both on the same lattice, so their (r, z) agree exactly up
-  // to the rounding of the lattice arithmetic; keys are rounded to 1e-9 of the size.
-  const double tol = 1e-9 * std::max(r_out, height);
+namespace {
+
+// Merges each node on parameter coordinate `axis` = 2 pi onto its twin at 0
+// (same other coordinates): the box generator places both on one lattice, so
+// they agree up to the rounding of the lattice arithmetic; keys are rounded to
+// 1e-9 of `size`. target[n] is the node n becomes (itself when kept).
+void merge_seam(const Mesh& box, int axis, double size, std::vector<int>& target) {
+  const double two_pi = 2.0 * M_PI, tol = 1e-9 * size;
+  const int a = (axis + 1) % 3, b = (axis + 2) % 3;
   auto key = [&](int n) {
-    return std::make_pair(std::llround(box.nodes(0, n) / tol), std::llround(box.nodes(2, n) / tol));
+    return std::make_pair(std::llround(box.nodes(a, n) / tol), std::llround(box.nodes(b, n) / tol));
   };
   std::map<std::pair<long long, long long>, int> at_zero;
   for (int n = 0; n < box.num_nodes(); ++n)
-    if (std::fabs(box.nodes(1, n)) <= 1e-12) at_zero[key(n)] = n;
-  std::vector<int> target(box.num_nodes());
-  for (int n = 0; n < box.num_nodes(); ++n) {
-    target[n] = n;
-    if (std::fabs(box.nodes(1, n) - two_pi) <= 1e-12) {
+    if (std::fabs(box.nodes(axis, n)) <= 1e-12) at_zero[key(n)] = n;
+  for (int n = 0; n < box.num_nodes(); ++n)
+    if (std::fabs(box.nodes(axis, n) - two_pi) <= 1e-12) {
       const auto it = at_zero.find(key(n));
-      if (it == at_zero.end()) throw std::logic_error("hollow_cylinder_mesh: seam node without its theta = 0 twin");
+      if (it == at_zero.end()) throw std::logic_error("periodic mesh: seam node without its twin at 0");
       target[n] = it->second;
     }
-  }
-  // Compact numbering of the kept nodes.
+}
+
+// The box's mesh with merged seams (target), nodes mapped by `map` from
+// parameter to physical coordinates, and the box's face sets renamed.
+template <class Map>
+Mesh mapped_mesh(const Mesh& box, std::vector<int> target, const Map& map,
+                 const std::map<std::string, std::string>& rename) {
+  // Chains (a corner on both seams) resolve to their final node.
+  for (int n = 0; n < box.num_nodes(); ++n)
+    while (target[target[n]] != target[n]) target[n] = target[target[n]];
   std::vector<int> new_id(box.num_nodes(), -1);
   int count = 0;
   for (int n = 0; n < box.num_nodes(); ++n)
@@ -50,29 +52,69 @@ Mesh hollow_cylinder_mesh(double r_in, double r_out, double height, int n_r, int
   m.order = box.order;
   m.nodes.resize(3, count);
   for (int n = 0; n < box.num_nodes(); ++n)
-    if (target[n] == n) {
-      const double r = box.nodes(0, n), t = box.nodes(1, n);
-      m.nodes.col(new_id[n]) << r * std::cos(t), r * std::sin(t), box.nodes(2, n);
-    }
+    if (target[n] == n) m.nodes.col(new_id[n]) = map(Eigen::Vector3d(box.nodes.col(n)));
   m.elements = box.elements;
   for (Eigen::Index e = 0; e < m.elements.cols(); ++e)
     for (Eigen::Index i = 0; i < m.elements.rows(); ++i) m.elements(i, e) = new_id[target[m.elements(i, e)]];
-  const std::map<std::string, std::string> rename{
-      {"xmin", "inner"}, {"xmax", "outer"}, {"zmin", "bottom"}, {"zmax", "top"}};
+  std::vector<int> boundary;
   for (const auto& [from, to] : rename) {
     std::vector<int> nodes;
     for (int n : box.node_set(from)) nodes.push_back(new_id[target[n]]);
     std::sort(nodes.begin(), nodes.end());
     nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    boundary.insert(boundary.end(), nodes.begin(), nodes.end());
     m.node_sets[to] = nodes;
   }
-  std::vector<int> boundary;
-  for (const char* s : {"inner", "outer", "bottom", "top"})
-    boundary.insert(boundary.end(), m.node_sets[s].begin(), m.node_sets[s].end());
   std::sort(boundary.begin(), boundary.end());
   boundary.erase(std::unique(boundary.begin(), boundary.end()), boundary.end());
   m.node_sets["boundary"] = boundary;
   return m;
+}
+
+std::vector<int> identity(int n) {
+  std::vector<int> t(n);
+  for (int i = 0; i < n; ++i) t[i] = i;
+  return t;
+}
+
+}  // namespace
+
+Mesh hollow_cylinder_mesh(double r_in, double r_out, double height, int n_r, int n_theta, int n_z, CellType cell,
+                          int order) {
+  if (!(r_in > 0.0 && r_out > r_in && height > 0.0) || n_r < 1 || n_z < 1 || n_theta < 3)
+    throw std::invalid_argument(fmt::format(
+        "hollow_cylinder_mesh: needs 0 < r_in < r_out, height > 0, n_r, n_z >= 1, n_theta >= 3 (got r_in = {}, "
+        "r_out = {}, height = {}, n = {} x {} x {})",
+        r_in, r_out, height, n_r, n_theta, n_z));
+  const Mesh box = box_mesh(BoxSpec{{r_in, 0.0, 0.0}, {r_out, 2.0 * M_PI, height}, {n_r, n_theta, n_z}}, cell, order);
+  std::vector<int> target = identity(box.num_nodes());
+  merge_seam(box, 1, std::max(r_out, height), target);
+  return mapped_mesh(
+      box, std::move(target),
+      [](const Eigen::Vector3d& p) { return Eigen::Vector3d(p[0] * std::cos(p[1]), p[0] * std::sin(p[1]), p[2]); },
+      {{"xmin", "inner"}, {"xmax", "outer"}, {"zmin", "bottom"}, {"zmax", "top"}});
+}
+
+Mesh hollow_torus_mesh(double major_radius, double r_in, double r_out, int n_r, int n_theta, int n_phi, CellType cell,
+                       int order) {
+  if (!(r_in > 0.0 && r_out > r_in && major_radius > r_out) || n_r < 1 || n_theta < 3 || n_phi < 3)
+    throw std::invalid_argument(fmt::format(
+        "hollow_torus_mesh: needs 0 < r_in < r_out < major radius, n_r >= 1, n_theta, n_phi >= 3 (got R = {}, "
+        "r_in = {}, r_out = {}, n = {} x {} x {})",
+        major_radius, r_in, r_out, n_r, n_theta, n_phi));
+  const double two_pi = 2.0 * M_PI;
+  const Mesh box = box_mesh(BoxSpec{{r_in, 0.0, 0.0}, {r_out, two_pi, two_pi}, {n_r, n_theta, n_phi}}, cell, order);
+  std::vector<int> target = identity(box.num_nodes());
+  merge_seam(box, 1, major_radius, target);
+  merge_seam(box, 2, major_radius, target);
+  const double R = major_radius;
+  return mapped_mesh(
+      box, std::move(target),
+      [R](const Eigen::Vector3d& p) {
+        const double rho = R + p[0] * std::cos(p[2]);
+        return Eigen::Vector3d(rho * std::cos(p[1]), rho * std::sin(p[1]), p[0] * std::sin(p[2]));
+      },
+      {{"xmin", "inner"}, {"xmax", "outer"}});
 }
 
 }  // namespace hofem

@@ -8,6 +8,8 @@
 //   "name": "cantilever",
 //   "mesh": {"box": {"min": [0,0,0], "max": [4,1,1], "cells": [8,2,2]}, "cell": "tet", "order": 2}
 //        or {"tube": {"r_in": 0.5, "r_out": 1, "height": 3, "cells": [2, 16, 8]}, "cell": "hex", "order": 2}
+//        or {"torus": {"major_radius": 1.5, "r_in": 0.25, "r_out": 0.5, "cells": [2, 24, 12]}, "cell": "tet", "order": 2}
+//           (a hollow torus about z: cells radial, around z, around the tube; node sets inner, outer)
 //        or {"file": "ball.msh", "order": 2}          (a P1 .msh is upgraded to the order)
 //   "material": {"model": "stable-neohookean", "young": 1e6, "poisson": 0.45, "density": 1000},
 //   "integrator": "implicit-euler" | ... | "static",
@@ -79,9 +81,11 @@ struct SceneBoundary {
 struct SceneShape {
   std::string file;  ///< empty: box or tube generator (relative paths resolved against the scene's folder)
   bool tube = false; ///< hollow cylinder about z (mesh/tube_mesh.hpp)
+  bool torus = false; ///< hollow torus about z (mesh/tube_mesh.hpp); tube_r_in/out are its tube's radii
+  double torus_major_radius = 1.0;
   double tube_r_in = 0.5, tube_r_out = 1.0, tube_height = 1.0;
   Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Ones();
-  Eigen::Vector3i cells = Eigen::Vector3i::Constant(2);  ///< box: per axis; tube: radial, around, along z
+  Eigen::Vector3i cells = Eigen::Vector3i::Constant(2);  ///< box: per axis; tube: radial, around, along z; torus: radial, around z, around the tube
 };
 
 /// The embedded geometry of a finite-cell scene and its quadrature settings.

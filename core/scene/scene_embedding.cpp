@@ -71,10 +71,10 @@ SceneEmbedding::SceneEmbedding(const Scene& s, const Mesh& background) : backgro
 
   // The surface, located in the cells that integrate something (null = uncut).
   surface_ = boundary_surface(geometry);
-  std::vector<char> active(ne);
-  for (int e = 0; e < ne; ++e) active[e] = !cells_.rules[e] || cells_.rules[e]->rule.size() > 0;
+  active_.resize(ne);
+  for (int e = 0; e < ne; ++e) active_[e] = !cells_.rules[e] || cells_.rules[e]->rule.size() > 0;
   try {
-    surface_map_ = locate_embedded_points(background, surface_.nodes, active);
+    surface_map_ = locate_embedded_points(background, surface_.nodes, active_);
   } catch (const std::invalid_argument& e) {  // every cell empty or dropped
     throw SceneError(fmt::format("{}: embedded: {}", s.file, e.what()));
   }

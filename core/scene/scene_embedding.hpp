@@ -39,6 +39,8 @@ class SceneEmbedding {
   /// (3 * background nodes values): their displacements, 3 x surface vertices.
   Eigen::Matrix3Xd surface_displacement(const Eigen::VectorXd& u) const;
   const Mesh& surface() const { return surface_; }
+  /// Per background element: it integrates something (uncut, or cut and kept).
+  const std::vector<char>& active_cells() const { return active_; }
 
   /// Writes frame_NNNNN_surface.vtu (point field "displacement") into `dir` and
   /// records it for write_pvd.
@@ -53,6 +55,7 @@ class SceneEmbedding {
   CellQuadrature cells_;
   Mesh surface_;
   EmbeddedPointMap surface_map_;
+  std::vector<char> active_;
   nlohmann::json stats_;
   std::vector<std::pair<double, std::string>> frames_;
 };

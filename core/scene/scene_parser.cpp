@@ -10,6 +10,7 @@
 #include "mesh/mesh_reorient.hpp"
 #include "mesh/mesh_upgrade.hpp"
 #include "mesh/tube_mesh.hpp"
+#include "scene/json_input.hpp"
 #include "solver/linear_solver.hpp"
 
 #include <fmt/format.h>
@@ -27,179 +28,22 @@ namespace {
 
 using json = nlohmann::json;
 
-// A value for a message: short, because a wrong value may be a 1 MB array.
-std::string brief(const json& j) {
-  std::string s = j.dump();
-  if (s.size() > 60) s = s.substr(0, 60) + "...";
-  return s;
-}
-
-// Refuses NUL bytes and nesting deeper than the cap before parsing: the scene format nests 5
-// levels, and a value nested 10^5 deep would exhaust the stack of any recursive
-// consumer (nlohmann's dump and destructor included). Brackets inside strings do
-// not count.
-void check_nesting(const std::string& text, const std::string& origin) {
-  const int cap = input_limits().json_depth;
-  int depth = 0;
-  long line = 1;
-  bool in_string = false, escaped = false;
-  for (const char c : text) {
-    if (c == '\n') ++line;
-    // nlohmann's parser stops at a NUL as at the end of the text, silently
-    // ignoring the rest: a NUL is refused (a scene is text).
-    if (c == '\0') throw SceneError(fmt::format("{}: line {}: a NUL byte: not a text file", origin, line));
-    if (in_string) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') in_string = false;
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > cap)
-        throw SceneError(fmt::format("{}: line {}: JSON nested deeper than {} levels (the cap; raise it with --limit "
-                                     "json-depth=N)",
-                                     origin, line, cap));
-    } else if (c == ']' || c == '}') {
-      --depth;
-    }
-  }
-}
-
-// nlohmann's message without its "[json.exception.parse_error.101] " tag.
-std::string without_tag(const char* what) {
-  const std::string_view w(what);
-  const std::size_t end = w.rfind("] ", 40);
-  return std::string(w.substr(w.substr(0, 1) == "[" && end != std::string_view::npos ? end + 2 : 0));
-}
-
-// Parses the JSON, tracking the key path of the value being read so that a
-// number the parser cannot hold (1e999) is reported with its key.
-json parse_json(const std::string& text, const std::string& origin) {
-  struct Frame {
-    bool array;
-    std::string key;
-    long index;
-    std::set<std::string> keys;  // seen in this object: JSON allows duplicates, the last would win silently
-  };
-  std::vector<Frame> frames;
-  auto path = [&frames] {
-    std::string p;
-    for (const Frame& f : frames)
-      p += f.array ? fmt::format("[{}]", f.index) : (p.empty() ? f.key : "." + f.key);
-    return p.empty() ? std::string("the scene") : p;
-  };
-  auto next_item = [&frames] {
-    if (!frames.empty() && frames.back().array) ++frames.back().index;
-  };
-  const json::parser_callback_t track = [&](int, json::parse_event_t event, json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start: frames.push_back({false, "", 0, {}}); break;
-      case json::parse_event_t::array_start: frames.push_back({true, "", 0, {}}); break;
-      case json::parse_event_t::key:
-        frames.back().key = parsed.get<std::string>();
-        if (!frames.back().keys.insert(frames.back().key).second)
-          throw SceneError(fmt::format("{}: {}: the key appears twice in its object", origin, path()));
-        break;
-      case json::parse_event_t::value: next_item(); break;
-      case json::parse_event_t::object_end:
-      case json::parse_event_t::array_end:
-        frames.pop_back();
-        next_item();
-        break;
-    }
-    return true;
-  };
-  try {
-    return json::parse(text, track);
-  } catch (const json::parse_error& e) {
-    // e.byte is the offset of the error; report the line.
-    const size_t byte = std::min<size_t>(e.byte, text.size());
-    const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(byte > 0 ? byte - 1 : 0), '\n');
-    throw SceneError(fmt::format("{}: line {}: not valid JSON ({})", origin, line, without_tag(e.what())));
-  } catch (const json::out_of_range& e) {
-    // The only range error of the parser: a number beyond double's range.
-    throw SceneError(fmt::format("{}: {}: a number out of the range of a double (|x| < 1.8e308): {}", origin, path(),
-                                 without_tag(e.what())));
-  } catch (const json::exception& e) {
-    throw SceneError(fmt::format("{}: {}: cannot read the JSON: {}", origin, path(), without_tag(e.what())));
-  }
-}
-
-// A JSON value with its key path, whose accessors validate and name the key.
-class Field {
- public:
-  Field(const json& j, std::string path, const std::string& origin) : j_(j), path_(std::move(path)), origin_(origin) {}
-
-  [[noreturn]] void fail(const std::string& what) const {
-    throw SceneError(fmt::format("{}: {} {}", origin_, path_.empty() ? std::string("the scene") : path_, what));
-  }
-  const std::string& path() const { return path_; }
-  const json& raw() const { return j_; }
-
-  /// Requires an object whose keys are all in `allowed`.
-  void keys(std::initializer_list<const char*> allowed) const {
-    if (!j_.is_object()) fail("must be an object");
-    std::set<std::string> ok(allowed.begin(), allowed.end());
-    for (const auto& [k, v] : j_.items())
-      if (!ok.count(k))
-        throw SceneError(fmt::format("{}: key '{}' is unknown (valid: {})", origin_, join(k),
-                                     fmt::join(std::vector<std::string>(ok.begin(), ok.end()), ", ")));
-  }
-  bool has(const std::string& k) const { return j_.is_object() && j_.contains(k); }
-  Field at(const std::string& k) const {
-    if (!has(k)) throw SceneError(fmt::format("{}: key '{}' is missing", origin_, join(k)));
-    return Field(j_.at(k), join(k), origin_);
-  }
-  Field item(size_t i) const { return Field(j_.at(i), fmt::format("{}[{}]", path_, i), origin_); }
-
-  double number(double lo, double hi, bool lo_open = false, bool hi_open = false) const {
-    if (!j_.is_number()) fail(fmt::format("must be a number (got {})", brief(j_)));
-    const double v = j_.get<double>();
-    if (!std::isfinite(v) || (lo_open ? v <= lo : v < lo) || (hi_open ? v >= hi : v > hi))
-      fail(fmt::format("= {} is out of range {}{}, {}{}", v, lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]"));
-    return v;
-  }
-  int integer(int lo, int hi) const {
-    if (!j_.is_number_integer()) fail(fmt::format("must be an integer (got {})", brief(j_)));
-    // A number_unsigned above LLONG_MAX would wrap in get<long long>().
-    if (j_.is_number_unsigned() && j_.get<unsigned long long>() > static_cast<unsigned long long>(hi))
-      fail(fmt::format("= {} is out of range [{}, {}]", j_.get<unsigned long long>(), lo, hi));
-    const long long v = j_.get<long long>();
-    if (v < lo || v > hi) fail(fmt::format("= {} is out of range [{}, {}]", v, lo, hi));
-    return static_cast<int>(v);
-  }
-  bool boolean() const {
-    if (!j_.is_boolean()) fail(fmt::format("must be true or false (got {})", brief(j_)));
-    return j_.get<bool>();
-  }
-  std::string string() const {
-    if (!j_.is_string()) fail(fmt::format("must be a string (got {})", brief(j_)));
-    return j_.get<std::string>();
-  }
-  std::string choice(const std::vector<std::string>& valid) const {
-    const std::string s = string();
-    for (const auto& v : valid)
-      if (v == s) return s;
-    fail(fmt::format("= '{}' is not one of: {}", s, fmt::join(valid, ", ")));
-  }
-  Eigen::Vector3d vec3() const {
-    if (!j_.is_array() || j_.size() != 3) fail(fmt::format("must be an array of 3 numbers (got {})", brief(j_)));
-    Eigen::Vector3d v;
-    for (int i = 0; i < 3; ++i) v[i] = item(i).number(-1e300, 1e300);
-    return v;
-  }
-
- private:
-  std::string join(const std::string& k) const { return path_.empty() ? k : path_ + "." + k; }
-  const json& j_;
-  std::string path_;
-  const std::string& origin_;
-};
-
-// The keys "box", "tube" and "file" of a mesh or embedded geometry (exactly one).
+// The keys "box", "tube", "torus" and "file" of a mesh or embedded geometry (exactly one).
 void parse_shape(const Field& m, SceneShape& shape, const std::string& scene_file) {
-  if (m.has("box") + m.has("file") + m.has("tube") != 1) m.fail("needs exactly one of 'box', 'tube' and 'file'");
-  if (m.has("tube")) {
+  if (m.has("box") + m.has("file") + m.has("tube") + m.has("torus") != 1)
+    m.fail("needs exactly one of 'box', 'tube', 'torus' and 'file'");
+  if (m.has("torus")) {
+    const Field t = m.at("torus");
+    t.keys({"major_radius", "r_in", "r_out", "cells"});
+    shape.torus = true;
+    shape.tube_r_in = t.at("r_in").number(0.0, 1e300, true);
+    shape.tube_r_out = t.at("r_out").number(shape.tube_r_in, 1e300, true);
+    shape.torus_major_radius = t.at("major_radius").number(shape.tube_r_out, 1e300, true);
+    const Field c = t.at("cells");
+    if (!c.raw().is_array() || c.raw().size() != 3)
+      c.fail("must be an array of 3 integers (radial, around z, around the tube)");
+    shape.cells << c.item(0).integer(1, 1000), c.item(1).integer(3, 10000), c.item(2).integer(3, 10000);
+  } else if (m.has("tube")) {
     const Field t = m.at("tube");
     t.keys({"r_in", "r_out", "height", "cells"});
     shape.tube = true;
@@ -231,19 +75,19 @@ void parse_shape(const Field& m, SceneShape& shape, const std::string& scene_fil
 // (6 tets or 1 hex per cell) and nodes (the order-p lattice of the cells'
 // corners, an upper bound for the tube and the serendipity Hex20).
 void check_generated_size(const Field& f, const SceneShape& shape, CellType cell, int order) {
-  if (!f.has("box") && !f.has("tube")) return;
+  if (!f.has("box") && !f.has("tube") && !f.has("torus")) return;
   const long long nx = shape.cells.x(), ny = shape.cells.y(), nz = shape.cells.z();
   const long long elements = nx * ny * nz * (cell == CellType::Tetrahedron ? 6 : 1);
   const long long nodes = (order * nx + 1) * (order * ny + 1) * (order * nz + 1);
   const std::string excess = mesh_size_excess(elements, nodes);
   if (!excess.empty())
-    f.at(f.has("box") ? "box" : "tube").at("cells").fail(fmt::format("= [{}, {}, {}] ({} {}): {}", nx, ny, nz,
+    f.at(f.has("box") ? "box" : f.has("tube") ? "tube" : "torus").at("cells").fail(fmt::format("= [{}, {}, {}] ({} {}): {}", nx, ny, nz,
                                                                       cell == CellType::Tetrahedron ? "tet" : "hex",
                                                                       order, excess));
 }
 
 void parse_mesh(const Field& m, Scene& s) {
-  m.keys({"box", "tube", "file", "cell", "order"});
+  m.keys({"box", "tube", "torus", "file", "cell", "order"});
   parse_shape(m, s.mesh, s.file);
   // The generators take a cell type; a .msh file brings its own.
   if (m.has("cell")) {
@@ -256,7 +100,7 @@ void parse_mesh(const Field& m, Scene& s) {
 
 // "embedded": the geometry (Tet4 generators or a .msh of tets) and the finite-cell settings.
 void parse_embedded(const Field& e, const Field& mesh, Scene& s) {
-  e.keys({"box", "tube", "file", "drop_fraction", "stabilisation", "simplify"});
+  e.keys({"box", "tube", "torus", "file", "drop_fraction", "stabilisation", "simplify"});
   SceneEmbedded emb;
   parse_shape(e, emb.shape, s.file);
   if (e.has("drop_fraction")) emb.drop_fraction = e.at("drop_fraction").number(0.0, 1.0, false, true);
@@ -265,8 +109,9 @@ void parse_embedded(const Field& e, const Field& mesh, Scene& s) {
   check_generated_size(e, emb.shape, CellType::Tetrahedron, 1);
   // The cut-cell rules need affine background cells: the tube's are curved (order
   // 2) or not parallelepipeds (Hex8), so only a box grid or a straight .msh will do.
-  if (s.mesh.tube)
-    mesh.at("tube").fail("cannot be the background of an embedded scene (its cells are not affine); use 'box'");
+  if (s.mesh.tube || s.mesh.torus)
+    mesh.at(s.mesh.tube ? "tube" : "torus")
+        .fail("cannot be the background of an embedded scene (its cells are not affine); use 'box'");
   s.embedded = std::move(emb);
 }
 
@@ -340,8 +185,10 @@ void apply_override(json& root, const std::string& item, const std::string& orig
         throw SceneError(fmt::format("{}: override '{}': {} is past the end of an array of {}", origin, item, so_far,
                                      at->size()));
       at = &(*at)[i];
-    } else if (at->is_object()) {
-      at = &(*at)[key];  // a new key is added, then validated like any other
+    } else if (at->is_object() || at->is_null()) {
+      // A new key is added (and a missing parent object made: "solver.linear=cholmod"
+      // in a scene without "solver"), then validated like any other.
+      at = &(*at)[key];
     } else {
       throw SceneError(fmt::format("{}: override '{}': {} is inside a value that is not an object", origin, item,
                                    so_far));
@@ -485,6 +332,9 @@ namespace {
 
 Mesh build_unchecked_scene_mesh(const Scene& s) {
   const SceneShape& m = s.mesh;
+  if (m.torus)
+    return hollow_torus_mesh(m.torus_major_radius, m.tube_r_in, m.tube_r_out, m.cells.x(), m.cells.y(), m.cells.z(),
+                             s.cell, s.order);
   if (m.tube)
     return hollow_cylinder_mesh(m.tube_r_in, m.tube_r_out, m.tube_height, m.cells.x(), m.cells.y(), m.cells.z(), s.cell,
                                 s.order);
@@ -509,6 +359,9 @@ Mesh build_unchecked_scene_mesh(const Scene& s) {
 Mesh build_unchecked_embedded_mesh(const Scene& s) {
   if (!s.embedded) throw std::logic_error("build_embedded_mesh: the scene has no embedded geometry");
   const SceneShape& g = s.embedded->shape;
+  if (g.torus)
+    return hollow_torus_mesh(g.torus_major_radius, g.tube_r_in, g.tube_r_out, g.cells.x(), g.cells.y(), g.cells.z(),
+                             CellType::Tetrahedron, 1);
   if (g.tube)
     return hollow_cylinder_mesh(g.tube_r_in, g.tube_r_out, g.tube_height, g.cells.x(), g.cells.y(), g.cells.z(),
                                 CellType::Tetrahedron, 1);

@@ -74,6 +74,17 @@ void add_displacement_curve(const Mesh& mesh, const Eigen::VectorXd& u, const Sc
   row["lowest_z"] = (X + d).row(2).minCoeff();
 }
 
+// Stiffness quadrature points over the whole mesh: the standard rule's in every
+// element, or a finite cell's own rule where it has one (scene_embedding.hpp).
+long long stiffness_points(const Mesh& mesh, int standard, const SceneEmbedding* embedding) {
+  if (!embedding) return static_cast<long long>(standard) * mesh.num_elements();
+  long long n = 0;
+  const ElementRules rules = embedding->element_rules();
+  for (int e = 0; e < mesh.num_elements(); ++e)
+    n += rules.stiffness[e] ? rules.stiffness[e]->rule.size() : standard;
+  return n;
+}
+
 void progress_bar(double fraction, double t, bool done) {
   const int width = 40, filled = static_cast<int>(std::lround(fraction * width));
   std::fprintf(stderr, "\r[%s%s] %3d%%  t = %.4g%s", std::string(filled, '#').c_str(),
@@ -131,15 +142,19 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   }
   const bool writer = rank == 0;  // distributed: one rank writes
+  if (out_dir.empty() && options.write_frames)
+    throw SceneError(fmt::format("{}: frames need an output directory", s.file));
+  // No output directory: nothing is written (a study's run keeps what it needs in memory).
+  const bool files = writer && !out_dir.empty();
   std::error_code ec;
-  std::filesystem::create_directories(out_dir, ec);
+  if (!out_dir.empty()) std::filesystem::create_directories(out_dir, ec);
   if (ec) throw SceneError(fmt::format("{}: cannot create the output directory '{}': {}", s.file, out_dir, ec.message()));
-  if (writer) clear_earlier_output(out_dir);
+  if (files) clear_earlier_output(out_dir);
   try {
     return run_scene_in(s, out_dir, options, writer, t_start);
   } catch (const std::exception& e) {
     // A run that stops on an error still leaves a stats.json, which says so and why.
-    if (writer)
+    if (files)
       write_file_atomically((std::filesystem::path(out_dir) / "stats.json").string(),
                             json{{"scene", s.name}, {"file", s.file}, {"status", "failed"}, {"ok", false},
                                  {"message", e.what()},
@@ -202,6 +217,9 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
     VectorField body;
     if (rho_g.squaredNorm() > 0.0) body = [rho_g](const Eigen::Vector3d&) { return rho_g; };
     StaticElasticity problem(mesh, *material, dirichlet, body, so);
+    st["quadrature_points"] = stiffness_points(mesh, static_cast<int>(problem.assembler().rule().size()), emb);
+    if (options.observer && writer)
+      options.observer(SceneState{mesh, emb, 0, 0.0, Eigen::VectorXd::Zero(3 * mesh.num_nodes())});
     const StaticReport r = problem.solve();
     result.ok = r.converged;
     result.message = r.message;
@@ -212,6 +230,7 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
     const Eigen::VectorXd energies = elemental(piece, problem.assembler().element_energies(*material, x));
     const Eigen::VectorXd volumes = elemental(piece, problem.assembler().element_volumes());
     const Eigen::VectorXd density = writer ? energy_density(energies, volumes) : Eigen::VectorXd();
+    if (options.observer && writer && r.converged) options.observer(SceneState{mesh, emb, 1, 1.0, u});
     if (options.write_frames && writer) write_frame(out_dir, 0, mesh, u, Eigen::VectorXd(), density, emb, frames, 0.0);
     st["built"] = {{"linear_solver", r.linear_solver},
                    {"linear_solver_reason", r.linear_solver_reason},
@@ -241,6 +260,7 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
     const Eigen::Vector3d v0 = s.initial_velocity;
     if (v0.squaredNorm() > 0.0) sim.set_velocity([v0](const Eigen::Vector3d&) { return v0; });
     const DistributedMesh* piece = sim.distributed_mesh();
+    st["quadrature_points"] = stiffness_points(mesh, static_cast<int>(sim.assembler().rule().size()), emb);
     const Eigen::VectorXd volumes = elemental(piece, sim.assembler().element_volumes());
     auto frame = [&](int k) {
       if (!options.write_frames) return;
@@ -255,6 +275,10 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
     const auto t_steps = Clock::now();
     st["setup_seconds"] = std::chrono::duration<double>(t_steps - t_start).count();
     frame(0);
+    if (options.observer) {
+      const Eigen::VectorXd u0 = nodal(piece, sim.displacement());
+      if (writer) options.observer(SceneState{mesh, emb, 0, sim.time(), u0});
+    }
     json per_step = json::array();
     int done = 0;
     for (int k = 1; k <= steps; ++k) {
@@ -274,6 +298,7 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
                        {"total", e.total()}};
       const Eigen::VectorXd u = nodal(piece, sim.displacement());  // gathered: the writer's curve
       if (writer) add_displacement_curve(mesh, u, emb, row);
+      if (writer && options.observer) options.observer(SceneState{mesh, emb, k, r.time, u});
       per_step.push_back(row);
       done = k;
       if (k % s.output_every == 0 || k == steps) frame(k);
@@ -305,7 +330,8 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
   st["ok"] = result.ok;
   st["message"] = result.message;
   st["wall_seconds"] = std::chrono::duration<double>(Clock::now() - t_start).count();
-  write_file_atomically((std::filesystem::path(out_dir) / "stats.json").string(), st.dump(1) + "\n");
+  if (!out_dir.empty())
+    write_file_atomically((std::filesystem::path(out_dir) / "stats.json").string(), st.dump(1) + "\n");
   return result;
 }
 

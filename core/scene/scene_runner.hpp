@@ -20,9 +20,23 @@
 
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <string>
 
 namespace hofem {
+
+class SceneEmbedding;
+
+/// A scene's state handed to SceneRunOptions::observer: the mesh that carries
+/// the displacement (the background of an embedded scene), the embedding, the
+/// time and the whole body's displacement (3 per node).
+struct SceneState {
+  const Mesh& mesh;
+  const SceneEmbedding* embedding;  ///< null unless the scene is embedded
+  int step;                         ///< 0: the initial state
+  double t;                         ///< static scenes: 0, then 1 (the end of the load path)
+  const Eigen::VectorXd& u;
+};
 
 struct SceneRunOptions {
   bool progress = false;  ///< a progress bar on stderr
@@ -31,6 +45,10 @@ struct SceneRunOptions {
   /// runs the scene on its part of the elements, rank 0 writes the frames and
   /// stats.json (the state is replicated, so they are the whole body's).
   bool distributed = false;
+  /// When set: called on the writing rank with the initial state and after every
+  /// step that succeeded (a static scene: after the solve). Studies (study/)
+  /// measure errors from it; it does not count in the steps' seconds.
+  std::function<void(const SceneState&)> observer;
 };
 
 struct SceneRunResult {
@@ -39,7 +57,8 @@ struct SceneRunResult {
   nlohmann::json stats;  ///< what stats.json holds
 };
 
-/// Throws SceneError for problems found before stepping (mesh, node sets,
+/// An empty out_dir writes nothing (write_frames must then be false): the
+/// result's stats are all there is. Throws SceneError for problems found before stepping (mesh, node sets,
 /// output directory); a failed step ends the run with ok = false and the
 /// message, after writing what was computed.
 SceneRunResult run_scene(const Scene& scene, const std::string& out_dir, const SceneRunOptions& options = {});

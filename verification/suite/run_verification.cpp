@@ -9,6 +9,7 @@
 #include "fcm_convergence_checks.hpp"
 #include "fcm_load_checks.hpp"
 #include "fcm_rigid_motion_checks.hpp"
+#include "study_checks.hpp"
 #include "material_checks.hpp"
 #include "partition_checks.hpp"
 #include "quadrature_checks.hpp"
@@ -55,6 +56,7 @@ Report run_all_checks(const SuiteOptions& options) {
   timed(report, "finite cell Fig. 5", [&] { add_fcm_conditioning_checks(report, options.convergence); });
   timed(report, "finite cell Fig. 6", [&] { add_fcm_rigid_motion_checks(report); });
   timed(report, "finite cell Fig. 10", [&] { add_fcm_convergence_checks(report, options.convergence); });
+  timed(report, "scene error measures", [&] { add_study_checks(report); });
   return report;
 }
 

@@ -63,7 +63,7 @@ TEST(Scenes, InvalidScenesNameTheFileAndTheKey) {
       {with("\"cells\": [1, 1, 1]", "\"cells\": [1, 1.5, 1]"), "t.json: mesh.box.cells[1] must be an integer"},
       {with("\"max\": [1, 1, 1]", "\"max\": [1, 0, 1]"), "t.json: mesh.box needs max > min in every coordinate"},
       {with("\"cell\": \"tet\"", "\"cell\": \"prism\""), "t.json: mesh.cell = 'prism' is not one of: tet, hex"},
-      {with("\"mesh\": {", "\"mesh\": {\"file\": \"a.msh\", "), "t.json: mesh needs exactly one of 'box', 'tube' and 'file'"},
+      {with("\"mesh\": {", "\"mesh\": {\"file\": \"a.msh\", "), "t.json: mesh needs exactly one of 'box', 'tube', 'torus' and 'file'"},
       {with("\"motion\": \"fixed\"", "\"motion\": \"glued\""), "t.json: boundary[0].motion = 'glued' is not one of: fixed"},
       {with("\"motion\": \"fixed\"", "\"motion\": {\"rotate\": {\"point\": [0,0,0], \"axis\": [0,0,0], \"omega\": 1}}"),
        "t.json: boundary[0].motion.rotate.axis must be a non-zero vector"},
@@ -404,12 +404,12 @@ TEST(Scenes, InvalidEmbeddedInputNamesTheKey) {
   const Case cases[] = {
       {edit(tube, tube + R"(, "stabilization": 1e-6)"),
        "t.json: key 'embedded.stabilization' is unknown (valid: box, drop_fraction, file, simplify, stabilisation, "
-       "tube)"},
+       "torus, tube)"},
       {edit(tube, tube + R"(, "stabilisation": -1e-6)"),
        "t.json: embedded.stabilisation = -1e-06 is out of range [0, 1]"},
       {edit(tube, tube + R"(, "drop_fraction": 1)"), "t.json: embedded.drop_fraction = 1 is out of range [0, 1)"},
       {edit(tube, tube + R"(, "simplify": "yes")"), "t.json: embedded.simplify must be true or false"},
-      {edit(tube, tube + R"(, "file": "a.msh")"), "t.json: embedded needs exactly one of 'box', 'tube' and 'file'"},
+      {edit(tube, tube + R"(, "file": "a.msh")"), "t.json: embedded needs exactly one of 'box', 'tube', 'torus' and 'file'"},
       {edit("\"r_in\": 0.2", "\"r_in\": -0.2"), "t.json: embedded.tube.r_in = -0.2 is out of range (0,"},
       {edit(R"("box": {"min": [-0.5, -0.5, 0], "max": [0.5, 0.5, 1], "cells": [2, 2, 2]})",
             R"("tube": {"r_in": 0.5, "r_out": 1, "height": 1, "cells": [1, 8, 1]})"),

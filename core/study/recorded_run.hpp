@@ -1,0 +1,41 @@
+#pragma once
+// One scene run as a study measures it: the mesh that carries the displacement,
+// for a finite-cell run also its embedded surface, active cells and own
+// quadrature, and the displacement at chosen times (t = 0 always: the faceting
+// floor), taken from the run through SceneRunOptions::observer - nothing is read
+// back from VTU frames, and nothing is recorded between the chosen times.
+#include "basis/element_rules.hpp"
+#include "mesh/mesh.hpp"
+#include "scene/scene.hpp"
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace hofem {
+
+struct RecordedRun {
+  Mesh mesh;                            ///< carries u (a finite-cell run's background)
+  std::optional<Mesh> embedded_surface; ///< finite-cell runs: the geometry's boundary triangles
+  std::vector<char> active;             ///< finite-cell runs: cells that integrate something (else empty)
+  ElementQuadratureList own_rules;      ///< finite-cell runs: each cell's mass rule (null = standard)
+  /// The recorded states: times[0] = 0, then one per requested time (the step
+  /// nearest to it; a static scene's one state is at t = 1).
+  std::vector<double> times;
+  std::vector<Eigen::VectorXd> states;
+  nlohmann::json stats;                 ///< stats.json of the run
+  bool ok = false;
+  std::string message;
+};
+
+/// Runs the scene without frames into `out_dir` (stats.json only; empty: no
+/// files) and records
+/// its state at t = 0 and at each time in `frame_times` (ascending; at most the
+/// scene's duration). A run that fails is returned with ok = false, its message
+/// and what it recorded.
+RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times);
+
+}  // namespace hofem

@@ -1,0 +1,240 @@
+#include "study/study.hpp"
+
+#include "mesh/atomic_file.hpp"
+#include "study/scene_error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+namespace hofem {
+
+namespace {
+
+using json = nlohmann::json;
+namespace fs = std::filesystem;
+
+const char* const kMetrics[] = {"surface_rms", "surface_max", "displacement_rms", "l2", "h1", "relative_l2",
+                                "relative_h1"};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// Cost and size of a run, from its stats.json (scene_runner.hpp).
+json cost_of(const RecordedRun& r) {
+  const json& st = r.stats;
+  std::vector<double> seconds;
+  if (st.contains("steps"))
+    for (const json& row : st["steps"]) seconds.push_back(row.value("seconds", 0.0));
+  const bool embedded = r.embedded_surface.has_value();
+  const long long nodes = st.contains("mesh") ? st["mesh"].value("nodes", 0LL) : 0LL;
+  const long long active = embedded ? st["embedded"]["nodes"].value("active", 0LL) : nodes;
+  const json built = st.value("built", json::object());
+  json c{{"elements", st.contains("mesh") ? st["mesh"].value("elements", 0LL) : 0LL},
+         {"nodes", nodes},
+         {"unknowns", 3 * active},
+         {"quadrature_points", st.value("quadrature_points", 0LL)},
+         {"steps", seconds.empty() ? 1 : seconds.size()},
+         // A static scene is one step: its solve, mesh and set-up included.
+         {"time_per_step_median", seconds.empty() ? st.value("wall_seconds", 0.0) : median(seconds)},
+         {"total_seconds", st.value("wall_seconds", 0.0)},
+         {"newton_iterations", built.value("newton_iterations", 0LL)},
+         {"linear_iterations", built.value("linear_iterations", 0LL)},
+         {"linear_solver", built.value("linear_solver", std::string())}};
+  if (embedded) c["active_cells"] = st["embedded"]["cells"].value("uncut", 0) + st["embedded"]["cells"].value("cut", 0);
+  return c;
+}
+
+// Errors at each frame (state 0 is the floor) and their max over frames.
+json errors_of(const std::vector<StateError>& errors) {
+  json frames = json::array(), worst = json::object();
+  for (const char* m : kMetrics) worst[m] = 0.0;
+  for (size_t k = 1; k < errors.size(); ++k) {
+    frames.push_back(to_json(errors[k]));
+    for (const char* m : kMetrics) worst[m] = std::max(worst[m].get<double>(), frames.back()[m].get<double>());
+  }
+  const json floor = to_json(errors.front());
+  return {{"floor", {{"surface_rms", floor["surface_rms"]}, {"surface_max", floor["surface_max"]}}},
+          {"frames", frames},
+          {"max_over_frames", worst}};
+}
+
+// The reference's own error from the coarser level (richardson_error), per
+// metric: surface and L2-type errors converge like h^(p+1), H1 like h^p.
+json richardson_of(const RecordedRun& reference, const RecordedRun& coarser, const std::vector<StateError>& errors) {
+  const double ratio = std::cbrt(static_cast<double>(reference.mesh.num_elements()) / coarser.mesh.num_elements());
+  const int p = reference.mesh.order;
+  json out{{"ratio", ratio}, {"order_assumed", {{"surface_and_l2", p + 1}, {"h1", p}}}};
+  const json measured = errors_of(errors)["max_over_frames"];
+  json estimate = json::object();
+  for (const char* m : kMetrics) {
+    const double q = std::string(m).find("h1") != std::string::npos ? p : p + 1;
+    estimate[m] = ratio > 1.0 ? richardson_error(measured[m].get<double>(), ratio, q) : measured[m].get<double>();
+  }
+  out["distance_to_coarser"] = measured;
+  out["estimate"] = estimate;
+  return out;
+}
+
+// The measuring floor: the reference's undeformed surface at the study's
+// subdivisions against the same at twice as many.
+double measuring_floor(const RecordedRun& reference, int subdivisions) {
+  const int s = subdivisions >= 1 ? subdivisions : default_subdivisions(reference.mesh.cell, reference.mesh.order);
+  const TriangleSurface a = deformed_surface(reference.mesh, run_surface_lattice(reference, s), reference.states[0]);
+  const TriangleSurface b = deformed_surface(reference.mesh, run_surface_lattice(reference, 2 * s), reference.states[0]);
+  return surface_distance(a, b).rms();
+}
+
+// Per threshold: the cheapest run (median time per step) whose metric is under it, overall and per family.
+json cheapest_of(const json& runs, const std::vector<double>& thresholds, const std::string& metric) {
+  json out = json::array();
+  for (const double t : thresholds) {
+    json best = nullptr;
+    std::map<std::string, json> family;
+    for (const json& r : runs) {
+      if (!r["ok"].get<bool>() || r["metric"].get<double>() > t) continue;
+      const auto cheaper = [&](const json& b) {
+        return b.is_null() || r["time_per_step_median"].get<double>() < b["time_per_step_median"].get<double>();
+      };
+      const json brief_row{{"name", r["name"]}, {"family", r["family"]}, {metric, r["metric"]},
+                           {"time_per_step_median", r["time_per_step_median"]}, {"unknowns", r["unknowns"]}};
+      if (cheaper(best)) best = brief_row;
+      json& f = family[r["family"].get<std::string>()];
+      if (cheaper(f)) f = brief_row;
+    }
+    out.push_back({{"threshold", t}, {"cheapest", best}, {"per_family", family}});
+  }
+  return out;
+}
+
+std::string summary_markdown(const json& study) {
+  const std::string metric = study["metric"];
+  std::string md = fmt::format("# Study {}: time per step against {}\n\nScene `{}`; frames at t = {}; reference `{}` "
+                               "({} unknowns), its own error (Richardson) {}.\n\n",
+                               study["name"].get<std::string>(), metric, study["scene"].get<std::string>(),
+                               study["frames"].dump(), study["reference"]["name"].get<std::string>(),
+                               study["reference"]["unknowns"].get<long long>(),
+                               study["reference"].contains("richardson")
+                                   ? fmt::format("{:.3g}", study["reference"]["richardson"]["estimate"][metric].get<double>())
+                                   : std::string("not estimated (no coarser level)"));
+  md += "| run | family | unknowns | quad. points | time/step [s] | Newton | linear | floor | surface RMS | surface max "
+        "| displ. RMS | rel. L2 | rel. H1 |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const json& r : study["runs"]) {
+    if (!r["ok"].get<bool>()) {
+      md += fmt::format("| {} | {} | failed: {} |\n", r["name"].get<std::string>(), r["family"].get<std::string>(),
+                        r["message"].get<std::string>());
+      continue;
+    }
+    const json& m = r["max_over_frames"];
+    md += fmt::format("| {} | {} | {} | {} | {:.4g} | {} | {} | {:.3g} | {:.3g} | {:.3g} | {:.3g} | {:.3g} | {:.3g} |\n",
+                      r["name"].get<std::string>(), r["family"].get<std::string>(), r["unknowns"].get<long long>(),
+                      r["quadrature_points"].get<long long>(), r["time_per_step_median"].get<double>(),
+                      r["newton_iterations"].get<long long>(), r["linear_iterations"].get<long long>(),
+                      r["floor"]["surface_rms"].get<double>(), m["surface_rms"].get<double>(),
+                      m["surface_max"].get<double>(), m["displacement_rms"].get<double>(),
+                      m["relative_l2"].get<double>(), m["relative_h1"].get<double>());
+  }
+  md += fmt::format("\nCheapest run (median time per step) with {} (max over frames) under each threshold:\n\n", metric);
+  for (const json& c : study["cheapest"]) {
+    md += fmt::format("- {} <= {:.3g}: ", metric, c["threshold"].get<double>());
+    if (c["cheapest"].is_null()) md += "none of the runs\n";
+    else
+      md += fmt::format("**{}** ({}, {:.4g} s per step)\n", c["cheapest"]["name"].get<std::string>(),
+                        c["cheapest"]["family"].get<std::string>(), c["cheapest"]["time_per_step_median"].get<double>());
+  }
+  return md;
+}
+
+}  // namespace
+
+double richardson_error(double distance_to_coarser, double ratio, double order) {
+  return distance_to_coarser / (std::pow(ratio, order) - 1.0);
+}
+
+json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  const fs::path out(out_dir);
+  auto say = [&](const std::string& line) {
+    if (options.progress)
+      fmt::print(stderr, "study {}: [{:.0f} s] {}\n", s.name, std::chrono::duration<double>(Clock::now() - t0).count(),
+                 line);
+  };
+  auto record = [&](const StudyRun& r) {
+    say(fmt::format("running {} ({})", r.name, r.family));
+    return record_run(r.scene, (out / "runs" / r.name).string(), s.frames);
+  };
+  const RecordedRun reference = record(s.reference);
+  if (!reference.ok)
+    throw SceneError(fmt::format("{}: reference: the reference run failed: {}", s.file, reference.message));
+  const ReferenceMeasure measure(reference, s.subdivisions);
+
+  const double floor = measuring_floor(reference, s.subdivisions);
+  if (s.metric == "surface_rms" && floor > 0.1 * s.thresholds.front())
+    throw SceneError(fmt::format("{}: thresholds: {:.3g} is below 10 x the measuring floor {:.3g} (the reference's "
+                                 "surface at {} against twice the subdivisions); raise it or 'subdivisions'",
+                                 s.file, s.thresholds.front(), floor, s.subdivisions));
+  json ref_row = cost_of(reference);
+  ref_row["name"] = s.reference.name;
+  ref_row["overrides"] = s.reference.overrides;
+  ref_row["cell"] = reference.mesh.cell == CellType::Hexahedron ? "hex" : "tet";
+  ref_row["order"] = reference.mesh.order;
+  ref_row["embedded"] = reference.embedded_surface.has_value();
+  if (s.coarser_reference) {
+    const RecordedRun coarse = record(*s.coarser_reference);
+    if (!coarse.ok)
+      throw SceneError(fmt::format("{}: reference.coarser: the run failed: {}", s.file, coarse.message));
+    ref_row["richardson"] = richardson_of(reference, coarse, scene_error(coarse, measure, s.subdivisions));
+  }
+
+  json runs = json::array();
+  for (const StudyRun& r : s.runs) {
+    const RecordedRun run = record(r);
+    json row = cost_of(run);
+    row["name"] = r.name;
+    row["family"] = r.family;
+    row["overrides"] = r.overrides;
+    row["cell"] = r.scene.cell == CellType::Hexahedron ? "hex" : "tet";
+    row["order"] = r.scene.order;
+    row["embedded"] = r.scene.embedded.has_value();
+    row["ok"] = run.ok;
+    row["message"] = run.message;
+    if (run.ok) {
+      row.update(errors_of(scene_error(run, measure, s.subdivisions)));
+      row["metric"] = row["max_over_frames"][s.metric];
+      say(fmt::format("{}: {:.3g} s per step, {} = {:.3g}", r.name, row["time_per_step_median"].get<double>(),
+                      s.metric, row["metric"].get<double>()));
+    } else {
+      say(fmt::format("{} failed: {}", r.name, run.message));
+    }
+    runs.push_back(row);
+  }
+
+  json study{{"name", s.name},
+             {"file", s.file},
+             {"scene", s.scene_file},
+             {"overrides", s.overrides},
+             {"frames", s.frames},
+             {"metric", s.metric},
+             {"thresholds", s.thresholds},
+             {"subdivisions", s.subdivisions},
+             {"measuring_floor", floor},
+             {"reference", ref_row},
+             {"runs", runs},
+             {"cheapest", cheapest_of(runs, s.thresholds, s.metric)},
+             {"wall_seconds", std::chrono::duration<double>(Clock::now() - t0).count()}};
+  write_file_atomically((out / "study.json").string(), study.dump(1) + "\n");
+  write_file_atomically((out / "summary.md").string(), summary_markdown(study));
+  say(fmt::format("wrote {}", (out / "study.json").string()));
+  return study;
+}
+
+}  // namespace hofem

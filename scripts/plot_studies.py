@@ -1,0 +1,88 @@
+#!/usr/bin/python3
+"""Work-precision plots of the studies (reports/studies/NAME/study.json, written
+by `hofem study`): the study's metric (max over its frames) against the median
+time per step, one marker per family, a family's resolutions joined coarse to
+fine; the thresholds as dashed lines, the reference's own error (Richardson) as a
+shaded band, each run's faceting floor (t = 0) as a small open marker below it.
+Writes reports/studies/NAME/work_precision.png. Run with Debian's interpreter
+(python3-matplotlib)."""
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">"]
+# One colour per family, fixed by the family's order of appearance (colour-blind safe, Okabe-Ito).
+COLOURS = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#F0E442"]
+
+
+def plot(study, path):
+    metric = study["metric"]
+    runs = [r for r in study["runs"] if r["ok"]]
+    families = []
+    for r in runs:
+        if r["family"] not in families:
+            families.append(r["family"])
+    # Floors at round-off (a box's flat faces are exact at t = 0) are not drawn.
+    smallest = min(r["metric"] for r in runs)
+    visible = lambda r: metric.startswith("surface") and r["floor"]["surface_rms"] > 1e-3 * smallest
+    fig, ax = plt.subplots(figsize=(7.0, 5.0))
+    for i, family in enumerate(families):
+        rows = sorted((r for r in runs if r["family"] == family), key=lambda r: r["unknowns"])
+        x = [r["time_per_step_median"] for r in rows]
+        y = [r["metric"] for r in rows]
+        colour, marker = COLOURS[i % len(COLOURS)], MARKERS[i % len(MARKERS)]
+        ax.plot(x, y, marker=marker, color=colour, label=family, markersize=7)
+        floors = [(r["time_per_step_median"], r["floor"]["surface_rms"]) for r in rows if visible(r)]
+        if floors:
+            ax.plot(*zip(*floors), linestyle="none", marker=marker, color=colour, markerfacecolor="none", markersize=5,
+                    alpha=0.7)
+        for r in rows:
+            ax.annotate(f'{r["unknowns"]}', (r["time_per_step_median"], r["metric"]), textcoords="offset points",
+                        xytext=(4, 4), fontsize=7, color=colour)
+    for t in study["thresholds"]:
+        ax.axhline(t, color="0.4", linestyle="--", linewidth=0.8)
+        ax.annotate(f"threshold {t:g}", (0.01, t), xycoords=("axes fraction", "data"), xytext=(0, 2),
+                    textcoords="offset points", fontsize=8, color="0.3")
+    richardson = study["reference"].get("richardson")
+    if richardson:
+        ax.axhspan(1e-300, richardson["estimate"][metric], color="0.85", zorder=0,
+                   label="reference's own error (Richardson)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("time per step, median [s]")
+    unit = "[length]" if metric != "relative_l2" else "[-]"
+    ax.set_ylabel(f"{metric.replace('_', ' ')}, max over frames {unit}")
+    ax.set_title(f'{study["name"]}: error against time per step\n(open markers: faceting floor at t = 0; labels: unknowns)',
+                 fontsize=10)
+    ys = [r["metric"] for r in runs] + list(study["thresholds"])
+    ys += [r["floor"]["surface_rms"] for r in runs if visible(r)]
+    if richardson:
+        ys.append(richardson["estimate"][metric])
+    ax.set_ylim(min(ys) / 3, max(ys) * 2)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="lower left")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def main(reports):
+    root = os.path.join(reports, "studies")
+    if not os.path.isdir(root):
+        return 0
+    for name in sorted(os.listdir(root)):
+        path = os.path.join(root, name, "study.json")
+        if os.path.isfile(path):
+            with open(path) as f:
+                plot(json.load(f), os.path.join(root, name, "work_precision.png"))
+            print(f"plot_studies: {os.path.join(root, name, 'work_precision.png')}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1] if len(sys.argv) > 1 else "reports"))
