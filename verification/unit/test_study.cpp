@@ -200,6 +200,18 @@ TEST(StudyFile, MalformedStudiesNameTheKey) {
   EXPECT_NE(st.find("does not apply to a static scene"), std::string::npos) << st;
 }
 
+// The built-in studies, main-job and full size, are valid (every run's scene too).
+TEST(StudyFile, BuiltInStudiesAreValid) {
+  int count = 0;
+  for (const char* sub : {"scripts/studies", "scripts/studies/full"})
+    for (const auto& entry : fs::directory_iterator(fs::path(HOFEM_SOURCE_DIR) / sub)) {
+      if (entry.path().extension() != ".json") continue;
+      EXPECT_NO_THROW(read_study(entry.path().string())) << entry.path();
+      ++count;
+    }
+  EXPECT_GE(count, 4);
+}
+
 // End to end on the tiny scene: the runs' rows, errors that fall with
 // refinement, the cheapest run under each threshold, and the files.
 TEST(StudyRun, TinyStudyWritesItsTable) {
