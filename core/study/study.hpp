@@ -7,7 +7,7 @@
 //                (median), total time, Newton and linear iterations, the errors
 //                at each frame and their max over frames, the faceting floor
 //                (t = 0); the reference's own error estimate (Richardson, from
-//                the coarser reference level) beside them; per threshold the
+//                the coarser reference level) beside every run's errors; per threshold the
 //                cheapest run overall and per family
 //   summary.md   the same as a table
 //   runs/NAME/stats.json   each run's own statistics (scene_runner.hpp)

@@ -230,6 +230,7 @@ TEST(StudyRun, TinyStudyWritesItsTable) {
   EXPECT_LT(metric(1), metric(0));
   EXPECT_LT(metric(2), metric(1));
   EXPECT_TRUE(j["reference"].contains("richardson"));
+  EXPECT_EQ(j["runs"][0]["reference_error"], j["reference"]["richardson"]["estimate"]);  // quoted beside each run
   EXPECT_EQ(j["cheapest"].size(), 2u);
   EXPECT_TRUE(fs::exists(s.dir / "study.json"));
   EXPECT_TRUE(fs::exists(s.dir / "summary.md"));
