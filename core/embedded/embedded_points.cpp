@@ -85,6 +85,110 @@ double box_distance(const Eigen::Vector3d& X, const Eigen::Vector3d& lo, const E
   return (lo - X).cwiseMax(X - hi).cwiseMax(0.0).norm();
 }
 
+// Uniform buckets over the active cells' bounding boxes (all nodes: a curved
+// cell bulges past its vertices; curved cells' boxes get 5 % slack so boundary
+// points of a curved face stay inside), each listing the cells that reach it.
+class CellGrid {
+ public:
+  CellGrid(const Mesh& mesh, const std::vector<AffineFit>& fits, const std::vector<char>& active) {
+    const int ne = mesh.num_elements();
+    lo_ = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
+    Eigen::Vector3d hi = -lo_;
+    cell_lo_.resize(ne);
+    cell_hi_.resize(ne);
+    for (int e = 0; e < ne; ++e) {
+      cell_lo_[e] = cell_hi_[e] = mesh.nodes.col(mesh.elements(0, e));
+      for (int i = 1; i < mesh.nodes_per_element(); ++i) {
+        cell_lo_[e] = cell_lo_[e].cwiseMin(mesh.nodes.col(mesh.elements(i, e)));
+        cell_hi_[e] = cell_hi_[e].cwiseMax(mesh.nodes.col(mesh.elements(i, e)));
+      }
+      const double slack = fits[e].affine ? 1e-10 * fits[e].size : 0.05 * fits[e].size;
+      cell_lo_[e].array() -= slack;
+      cell_hi_[e].array() += slack;
+      if (active.empty() || active[e]) {
+        cells_.push_back(e);
+        lo_ = lo_.cwiseMin(cell_lo_[e]);
+        hi = hi.cwiseMax(cell_hi_[e]);
+      }
+    }
+    if (cells_.empty()) throw std::invalid_argument("locate_embedded_points: no active background cell");
+    n_ = std::max(1, static_cast<int>(std::cbrt(static_cast<double>(cells_.size()))));
+    size_ = ((hi - lo_) / n_).cwiseMax(1e-300);
+    buckets_.resize(static_cast<size_t>(n_) * n_ * n_);
+    for (int e : cells_) {
+      const Eigen::Vector3i a = bucket(cell_lo_[e]), b = bucket(cell_hi_[e]);
+      for (int i = a.x(); i <= b.x(); ++i)
+        for (int j = a.y(); j <= b.y(); ++j)
+          for (int k = a.z(); k <= b.z(); ++k) buckets_[index(i, j, k)].push_back(e);
+    }
+  }
+  int n() const { return n_; }
+  Eigen::Vector3i bucket(const Eigen::Vector3d& x) const {
+    return ((x - lo_).cwiseQuotient(size_)).array().floor().cast<int>().cwiseMax(0).cwiseMin(n_ - 1).matrix();
+  }
+  const std::vector<int>& at(const Eigen::Vector3i& b) const { return buckets_[index(b.x(), b.y(), b.z())]; }
+  bool in_box(int e, const Eigen::Vector3d& X) const {
+    return (X.array() >= cell_lo_[e].array()).all() && (X.array() <= cell_hi_[e].array()).all();
+  }
+  double box_distance_to(int e, const Eigen::Vector3d& X) const { return box_distance(X, cell_lo_[e], cell_hi_[e]); }
+  /// Appends the cells listed in the buckets at Chebyshev distance r from `home`.
+  void shell(const Eigen::Vector3i& home, int r, std::vector<int>& out) const {
+    for (int i = std::max(0, home.x() - r); i <= std::min(n_ - 1, home.x() + r); ++i)
+      for (int j = std::max(0, home.y() - r); j <= std::min(n_ - 1, home.y() + r); ++j)
+        for (int k = std::max(0, home.z() - r); k <= std::min(n_ - 1, home.z() + r); ++k)
+          if (std::max({std::abs(i - home.x()), std::abs(j - home.y()), std::abs(k - home.z())}) == r)
+            for (int e : buckets_[index(i, j, k)]) out.push_back(e);
+  }
+
+ private:
+  size_t index(int i, int j, int k) const { return (static_cast<size_t>(i) * n_ + j) * n_ + k; }
+  Eigen::Vector3d lo_, size_;
+  int n_ = 1;
+  std::vector<int> cells_;
+  std::vector<Eigen::Vector3d> cell_lo_, cell_hi_;
+  std::vector<std::vector<int>> buckets_;
+};
+
+constexpr double kInsideTol = 1e-10;  // reference-coordinate rounding of the inverse map
+
+// The cell containing X, or -1; its reference coordinates in xi.
+int containing_cell(const CellGrid& grid, CellMaps& maps, CellType cell, const Eigen::Vector3d& X, Eigen::Vector3d& xi) {
+  for (int e : grid.at(grid.bucket(X))) {
+    if (!grid.in_box(e, X)) continue;
+    xi = maps.reference(e, X);
+    if (inside(cell, xi, kInsideTol)) return e;
+  }
+  return -1;
+}
+
+// The nearest active cell, by the physical distance to its point at the clamped
+// reference coordinates: shells of buckets outward from the point's own, one
+// shell past the first that holds a cell (a cell's box may reach into a nearer
+// bucket than the one of its nearest point, so this is the nearest among the
+// cells near the point, not a global search).
+int nearest_cell(const CellGrid& grid, CellMaps& maps, CellType cell, const Eigen::Vector3d& X, Eigen::Vector3d& xi,
+                 std::vector<int>& candidates) {
+  double best = std::numeric_limits<double>::infinity();
+  int found = -1, last = grid.n();
+  const Eigen::Vector3i home = grid.bucket(X);
+  for (int r = 0; r <= std::min(last, grid.n()); ++r) {
+    candidates.clear();
+    grid.shell(home, r, candidates);
+    for (int e : candidates) {
+      if (grid.box_distance_to(e, X) >= best) continue;  // cannot be nearer
+      const Eigen::Vector3d x = maps.reference(e, X);
+      const double d = (maps.position(e, clamp_to_reference(cell, x)) - X).norm();
+      if (d < best) {
+        best = d;
+        found = e;
+        xi = x;
+      }
+    }
+    if (!candidates.empty() && last == grid.n()) last = r + 1;
+  }
+  return found;
+}
+
 }  // namespace
 
 EmbeddedPointMap locate_embedded_points(const Mesh& background, const Eigen::Matrix3Xd& points,
@@ -93,100 +197,32 @@ EmbeddedPointMap locate_embedded_points(const Mesh& background, const Eigen::Mat
   if (!active.empty() && static_cast<int>(active.size()) != ne)
     throw std::invalid_argument(fmt::format("locate_embedded_points: {} activity flags for {} elements", active.size(), ne));
   if (!points.allFinite()) throw std::invalid_argument("locate_embedded_points: a point is not finite");
-  auto is_active = [&](int e) { return active.empty() || active[e]; };
   std::vector<AffineFit> fits(ne);
-  std::vector<int> cells;
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::max()), hi = -lo;
-  std::vector<Eigen::Vector3d> cell_lo(ne), cell_hi(ne);
   for (int e = 0; e < ne; ++e) {
     fits[e] = fit_affine_cell(background, e);
     if (fits[e].degenerate) throw std::invalid_argument(fmt::format("locate_embedded_points: element {} is degenerate", e));
-    // All nodes: a curved cell bulges past its vertices (by less than its own
-    // size: the slack below keeps boundary points of a curved face inside).
-    cell_lo[e] = cell_hi[e] = background.nodes.col(background.elements(0, e));
-    for (int i = 1; i < background.nodes_per_element(); ++i) {
-      cell_lo[e] = cell_lo[e].cwiseMin(background.nodes.col(background.elements(i, e)));
-      cell_hi[e] = cell_hi[e].cwiseMax(background.nodes.col(background.elements(i, e)));
-    }
-    const double slack = fits[e].affine ? 1e-10 * fits[e].size : 0.05 * fits[e].size;
-    cell_lo[e].array() -= slack;
-    cell_hi[e].array() += slack;
-    if (is_active(e)) {
-      cells.push_back(e);
-      lo = lo.cwiseMin(cell_lo[e]);
-      hi = hi.cwiseMax(cell_hi[e]);
-    }
   }
-  if (cells.empty()) throw std::invalid_argument("locate_embedded_points: no active background cell");
-  // Uniform buckets over the active cells' bounding boxes.
-  const int n = std::max(1, static_cast<int>(std::cbrt(static_cast<double>(cells.size()))));
-  const Eigen::Vector3d size = ((hi - lo) / n).cwiseMax(1e-300);
-  auto bucket = [&](const Eigen::Vector3d& x) {
-    return ((x - lo).cwiseQuotient(size)).array().floor().cast<int>().cwiseMax(0).cwiseMin(n - 1).matrix().eval();
-  };
-  std::vector<std::vector<int>> buckets(static_cast<size_t>(n) * n * n);
-  for (int e : cells) {
-    const Eigen::Vector3i a = bucket(cell_lo[e]), b = bucket(cell_hi[e]);
-    for (int i = a.x(); i <= b.x(); ++i)
-      for (int j = a.y(); j <= b.y(); ++j)
-        for (int k = a.z(); k <= b.z(); ++k) buckets[(static_cast<size_t>(i) * n + j) * n + k].push_back(e);
-  }
-  // The cells listed in the buckets at Chebyshev distance r from `home`.
-  auto shell = [&](const Eigen::Vector3i& home, int r, std::vector<int>& out) {
-    for (int i = std::max(0, home.x() - r); i <= std::min(n - 1, home.x() + r); ++i)
-      for (int j = std::max(0, home.y() - r); j <= std::min(n - 1, home.y() + r); ++j)
-        for (int k = std::max(0, home.z() - r); k <= std::min(n - 1, home.z() + r); ++k)
-          if (std::max({std::abs(i - home.x()), std::abs(j - home.y()), std::abs(k - home.z())}) == r)
-            for (int e : buckets[(static_cast<size_t>(i) * n + j) * n + k]) out.push_back(e);
-  };
+  const CellGrid grid(background, fits, active);
 
   EmbeddedPointMap out;
   const int np = static_cast<int>(points.cols());
   out.element.assign(np, -1);
   out.xi.resize(3, np);
   out.extrapolated.assign(np, 0);
-  constexpr double kInsideTol = 1e-10;  // reference-coordinate rounding of the inverse map
 #pragma omp parallel
   {
     CellMaps maps(background, fits);
     std::vector<int> candidates;
+    Eigen::Vector3d xi;
 #pragma omp for schedule(dynamic, 256)
     for (int q = 0; q < np; ++q) {
-      const Eigen::Vector3d X = points.col(q);
-      const Eigen::Vector3i home = bucket(X);
-      for (int e : buckets[(static_cast<size_t>(home.x()) * n + home.y()) * n + home.z()]) {
-        if ((X.array() < cell_lo[e].array()).any() || (X.array() > cell_hi[e].array()).any()) continue;
-        const Eigen::Vector3d xi = maps.reference(e, X);
-        if (inside(background.cell, xi, kInsideTol)) {
-          out.element[q] = e;
-          out.xi.col(q) = xi;
-          break;
-        }
+      int e = containing_cell(grid, maps, background.cell, points.col(q), xi);
+      if (e < 0) {
+        e = nearest_cell(grid, maps, background.cell, points.col(q), xi, candidates);
+        out.extrapolated[q] = 1;
       }
-      if (out.element[q] >= 0) continue;
-      // The nearest active cell, by the physical distance to its point at the
-      // clamped reference coordinates: shells of buckets outward from the point's
-      // own, one shell past the first that holds a cell (a cell's box may reach
-      // into a nearer bucket than the one of its nearest point, so this is the
-      // nearest among the cells near the point, not a global search).
-      double best = std::numeric_limits<double>::infinity();
-      int last = n;
-      for (int r = 0; r <= std::min(last, n); ++r) {
-        candidates.clear();
-        shell(home, r, candidates);
-        for (int e : candidates) {
-          if (box_distance(X, cell_lo[e], cell_hi[e]) >= best) continue;  // cannot be nearer
-          const Eigen::Vector3d xi = maps.reference(e, X);
-          const double d = (maps.position(e, clamp_to_reference(background.cell, xi)) - X).norm();
-          if (d < best) {
-            best = d;
-            out.element[q] = e;
-            out.xi.col(q) = xi;
-          }
-        }
-        if (!candidates.empty() && last == n) last = r + 1;
-      }
-      out.extrapolated[q] = 1;
+      out.element[q] = e;
+      out.xi.col(q) = xi;
     }
   }
   out.num_extrapolated = static_cast<int>(std::count(out.extrapolated.begin(), out.extrapolated.end(), 1));

@@ -164,60 +164,69 @@ double richardson_error(double distance_to_coarser, double ratio, double order) 
   return distance_to_coarser / (std::pow(ratio, order) - 1.0);
 }
 
+namespace {
+
+// A run's row: what it is (its overrides, cell, order) and what it cost.
+json describe(const StudyRun& r, const RecordedRun& run) {
+  json row = cost_of(run);
+  row["name"] = r.name;
+  row["family"] = r.family;
+  row["overrides"] = r.overrides;
+  row["cell"] = r.scene.cell == CellType::Hexahedron ? "hex" : "tet";
+  row["order"] = r.scene.order;
+  row["embedded"] = r.scene.embedded.has_value();
+  row["ok"] = run.ok;
+  row["message"] = run.message;
+  return row;
+}
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+}  // namespace
+
 json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions& options) {
-  using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   const fs::path out(out_dir);
   auto say = [&](const std::string& line) {
-    if (options.progress)
-      fmt::print(stderr, "study {}: [{:.0f} s] {}\n", s.name, std::chrono::duration<double>(Clock::now() - t0).count(),
-                 line);
+    if (options.progress) fmt::print(stderr, "study {}: [{:.0f} s] {}\n", s.name, seconds_since(t0), line);
   };
   auto record = [&](const StudyRun& r) {
     say(fmt::format("running {} ({})", r.name, r.family));
     return record_run(r.scene, (out / "runs" / r.name).string(), s.frames);
   };
+  // 1. The reference, its measuring data and floor, and its own error from the coarser level.
   const RecordedRun reference = record(s.reference);
   if (!reference.ok)
     throw SceneError(fmt::format("{}: reference: the reference run failed: {}", s.file, reference.message));
   const ReferenceMeasure measure(reference, s.subdivisions);
-
   const double floor = measuring_floor(reference, s.subdivisions);
   if (s.metric == "surface_rms" && floor > 0.1 * s.thresholds.front())
     throw SceneError(fmt::format("{}: thresholds: {:.3g} is below 10 x the measuring floor {:.3g} (the reference's "
                                  "surface at {} against twice the subdivisions); raise it or 'subdivisions'",
                                  s.file, s.thresholds.front(), floor, s.subdivisions));
-  json ref_row = cost_of(reference);
-  ref_row["name"] = s.reference.name;
-  ref_row["overrides"] = s.reference.overrides;
-  ref_row["cell"] = reference.mesh.cell == CellType::Hexahedron ? "hex" : "tet";
-  ref_row["order"] = reference.mesh.order;
-  ref_row["embedded"] = reference.embedded_surface.has_value();
+  json ref_row = describe(s.reference, reference);
   if (s.coarser_reference) {
     const RecordedRun coarse = record(*s.coarser_reference);
     if (!coarse.ok)
       throw SceneError(fmt::format("{}: reference.coarser: the run failed: {}", s.file, coarse.message));
     ref_row["richardson"] = richardson_of(reference, coarse, scene_error(coarse, measure, s.subdivisions));
   }
-
   // Quoted beside every run's errors: the reference's own error, or null without a coarser level.
   const json reference_error = ref_row.contains("richardson") ? ref_row["richardson"]["estimate"] : json(nullptr);
+
+  // 2. Each run, then its errors against the reference.
   json runs = json::array();
   for (const StudyRun& r : s.runs) {
     const RecordedRun run = record(r);
-    json row = cost_of(run);
-    row["name"] = r.name;
-    row["family"] = r.family;
-    row["overrides"] = r.overrides;
-    row["cell"] = r.scene.cell == CellType::Hexahedron ? "hex" : "tet";
-    row["order"] = r.scene.order;
-    row["embedded"] = r.scene.embedded.has_value();
-    row["ok"] = run.ok;
-    row["message"] = run.message;
+    json row = describe(r, run);
     if (run.ok) {
+      const auto t_measure = Clock::now();
       row.update(errors_of(scene_error(run, measure, s.subdivisions)));
       row["metric"] = row["max_over_frames"][s.metric];
       row["reference_error"] = reference_error;
+      row["measure_seconds"] = seconds_since(t_measure);
       say(fmt::format("{}: {:.3g} s per step, {} = {:.3g}", r.name, row["time_per_step_median"].get<double>(),
                       s.metric, row["metric"].get<double>()));
     } else {
@@ -226,6 +235,7 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
     runs.push_back(row);
   }
 
+  // 3. The table, the cheapest runs, the files.
   json study{{"name", s.name},
              {"file", s.file},
              {"scene", s.scene_file},
@@ -238,7 +248,7 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
              {"reference", ref_row},
              {"runs", runs},
              {"cheapest", cheapest_of(runs, s.thresholds, s.metric)},
-             {"wall_seconds", std::chrono::duration<double>(Clock::now() - t0).count()}};
+             {"wall_seconds", seconds_since(t0)}};
   write_file_atomically((out / "study.json").string(), study.dump(1) + "\n");
   write_file_atomically((out / "summary.md").string(), summary_markdown(study));
   say(fmt::format("wrote {}", (out / "study.json").string()));
