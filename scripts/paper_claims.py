@@ -1,0 +1,220 @@
+#!/usr/bin/python3
+"""The seeds' reported numbers beside hofem's: reads the main job's reports
+(studies, verification.json) and writes reports/paper_claims.json and
+reports/paper_claims.md. Each row: id, source (document, section, table or
+figure), quantity, paper_value, measured, unit, criterion (written here, before
+any measurement it judges), agrees, size (main-job or full), note.
+
+Sources: Longva et al. 2020, "Higher-order finite elements for embedded
+simulation" (Table 1, §6.2-6.3, Fig. 10). The twisting cylinder is scaled: the
+seed's is 16 m long with E = 5e6, nu = 0.48 and a 0.015 m RMS threshold; ours
+(scripts/studies/twisting-cylinder.json) is 3 m long (radii 0.5 / 1 m), the
+same material, 1 s of a 2 s quarter turn at dt = 0.1, and the threshold scaled
+with the length, 0.015 x 3 / 16 = 0.0028, rounded to 0.003.
+
+Usage: paper_claims.py [REPORTS] [--out DIR] (default REPORTS and DIR: reports).
+Exits 1 if a source file is missing (the row would be silent garbage)."""
+import json
+import math
+import os
+import sys
+
+THRESHOLD = 0.003  # the twisting cylinder's scaled threshold (above)
+
+
+def load(reports):
+    with open(os.path.join(reports, "verification.json")) as f:
+        verification = json.load(f)
+    rows = {(r["group"], r["name"]): r["measured"] for r in verification["rows"]}
+    rows.update({(m["group"], m["name"]): m["value"] for m in verification.get("measurements", [])})
+    studies = {}
+    root = os.path.join(reports, "studies")
+    for name in sorted(os.listdir(root)):
+        with open(os.path.join(root, name, "study.json")) as f:
+            studies[name] = json.load(f)
+
+    def run_stats(study, run):
+        with open(os.path.join(root, study, "runs", run, "stats.json")) as f:
+            return json.load(f)
+
+    return {"verification": rows, "studies": studies, "run_stats": run_stats}
+
+
+def time_at(study, family, threshold):
+    """Median time per step at which the family's curve crosses the threshold
+    (log-log interpolation between the two runs that bracket it). Returns
+    (seconds, kind): kind "interpolated", "at most" (every run is under the
+    threshold: the coarsest's time bounds it) or "more than" (none is: the
+    finest's time is a lower bound)."""
+    runs = sorted((r for r in study["runs"] if r["ok"] and r["family"] == family), key=lambda r: r["unknowns"])
+    if not runs:
+        raise KeyError(f"no run of family {family!r}")
+    if runs[0]["metric"] <= threshold:
+        return runs[0]["time_per_step_median"], "at most"
+    for coarse, fine in zip(runs, runs[1:]):
+        if fine["metric"] <= threshold < coarse["metric"]:
+            a = math.log(threshold / coarse["metric"]) / math.log(fine["metric"] / coarse["metric"])
+            t = math.exp(math.log(coarse["time_per_step_median"]) +
+                         a * (math.log(fine["time_per_step_median"]) - math.log(coarse["time_per_step_median"])))
+            return t, "interpolated"
+    return runs[-1]["time_per_step_median"], "more than"
+
+
+def ratio_row(R, cid, family, paper_ms, note):
+    tc = R["studies"]["twisting-cylinder"]
+    t, kind = time_at(tc, family, THRESHOLD)
+    h, hkind = time_at(tc, "Hex20 FCM", THRESHOLD)
+    paper = paper_ms / 359.0
+    measured = t / h
+    # Same side of 1 as the seed and within a factor 3 of its value: the
+    # geometry is scaled 1/5, the machine, solver build and sizes differ.
+    agrees = (measured > 1) == (paper > 1) and paper / 3 <= measured <= paper * 3
+    if kind == "more than":  # the family never reached the threshold: its cost is above any finite ratio shown
+        agrees = (paper > 1) and measured >= min(paper / 3, 1)
+    return {"id": cid, "source": "Longva et al. 2020, Table 1 (§6.2)",
+            "quantity": f"time per step of {family} / Hex20 FCM at surface RMS = {THRESHOLD} (max over frames)",
+            "paper_value": round(paper, 3), "measured": measured, "unit": "ratio",
+            "criterion": "same side of 1 as the seed and within a factor 3 of its ratio",
+            "agrees": bool(agrees), "size": "main-job",
+            "note": f"{family}: {kind} {t:.4g} s per step; Hex20 FCM: {hkind} {h:.4g} s. {note}"}
+
+
+def twisting_cylinder_rows(R):
+    tc = R["studies"]["twisting-cylinder"]
+    rows = [
+        ratio_row(R, "table1.tet10_over_hex20", "Tet10 FEM", 560.0,
+                  "The seed: 'FCM roughly 1.6 times faster than the Tet10 FEM'."),
+        ratio_row(R, "table1.hex8_over_hex20", "Hex8 FCM", 2907.0, "The seed: 2,907 ms against 359 ms."),
+        ratio_row(R, "table1.tet4_over_hex20", "Tet4 FEM", 56321.0, "The seed: 56,321 ms against 359 ms."),
+    ]
+    first = [r for r in tc["runs"] if r["ok"] and r["family"] in ("Tet4 FEM", "Hex8 FCM") and r["metric"] <= THRESHOLD]
+    higher = [r for r in tc["runs"] if r["ok"] and r["family"] in ("Tet10 FEM", "Hex20 FCM") and r["metric"] <= THRESHOLD]
+    best_first = min((r["time_per_step_median"] for r in first), default=math.inf)
+    best_higher = min((r["time_per_step_median"] for r in higher), default=math.inf)
+    rows.append({
+        "id": "table1.higher_order_essential", "source": "Longva et al. 2020, §6.2, Table 1",
+        "quantity": f"cheapest first-order run under surface RMS {THRESHOLD} / cheapest higher-order run",
+        "paper_value": round(2907.0 / 359.0, 3), "measured": best_first / best_higher, "unit": "ratio",
+        "criterion": ">= 2, or no first-order run under the threshold ('higher-order elements are essential')",
+        "agrees": bool(best_first / best_higher >= 2), "size": "main-job",
+        "note": f"first order: {best_first:.4g} s per step (inf: none under the threshold); higher order: "
+                f"{best_higher:.4g} s. The seed's value is its best first-order (Hex8 FCM) over Hex20 FCM."})
+    richardson = tc["reference"]["richardson"]["estimate"]["surface_rms"]
+    rows.append({
+        "id": "table1.reference_error", "source": "Longva et al. 2020, §6.2 (reference: 86k Tet10)",
+        "quantity": "the reference's own surface RMS error (Richardson) / the threshold",
+        "paper_value": None, "measured": richardson / THRESHOLD, "unit": "ratio",
+        "criterion": "<= 0.1: the reference resolves the threshold (the seed reports no estimate)",
+        "agrees": bool(richardson / THRESHOLD <= 0.1), "size": "main-job",
+        "note": f"Tet20 reference, Richardson estimate {richardson:.3g} from its coarser level."})
+    return rows
+
+
+def simplification_rows(R):
+    """§6.3: Hex20 FCM (4 x 4 x 6 cells) with and without quadrature simplification."""
+    tc = R["studies"]["twisting-cylinder"]
+    s = R["run_stats"]("twisting-cylinder", "hex20-4")
+    u = R["run_stats"]("twisting-cylinder", "hex20-4-unsimplified")
+    q = s["embedded"]["quadrature"]
+    cut = s["embedded"]["cells"]["cut"]
+    by_name = {r["name"]: r for r in tc["runs"]}
+    fast, slow = by_name["hex20-4"], by_name["hex20-4-unsimplified"]
+    m = q["stiffness_degree"]
+    bound = math.comb(m + 3, 3)
+    src = "Longva et al. 2020, §6.3"
+    saved = slow["time_per_step_median"] - fast["time_per_step_median"]
+    return [
+        {"id": "s6.3.points_reduction", "source": src, "quantity": "cut cells' stiffness points before / after simplification",
+         "paper_value": round(5857880 / 70560, 2), "measured": q["points_before"] / q["points_after"], "unit": "ratio",
+         "criterion": ">= 20 (an order of magnitude; the factor grows with the embedded mesh's tets per cell)",
+         "agrees": q["points_before"] / q["points_after"] >= 20, "size": "main-job",
+         "note": f"{q['points_before']} -> {q['points_after']} points over {cut} cut cells (seed: 5,857,880 -> 70,560 "
+                 f"over 2,016 cells)."},
+        {"id": "s6.3.points_per_cut_cell", "source": src, "quantity": "stiffness points per cut cell after simplification",
+         "paper_value": round(70560 / 2016, 2), "measured": q["points_after"] / cut, "unit": "points",
+         "criterion": f"= C(m + 3, 3) for the stiffness degree m of each code (the LP's basic solution): the seed's m = 4 "
+                      f"gives 35, hofem's m = {m} gives {bound}",
+         "agrees": abs(q["points_after"] / cut - bound) < 1e-9, "size": "main-job",
+         "note": "hofem integrates the cut Hex20 stiffness exactly (degree 6) where the seed uses degree 4 "
+                 "(core/embedded/finite_cell_quadrature.hpp explains why): 84 points instead of 35."},
+        {"id": "s6.3.step_speedup", "source": src, "quantity": "time per step without / with simplification",
+         "paper_value": round(5691 / 359, 2), "measured": slow["time_per_step_median"] / fast["time_per_step_median"],
+         "unit": "ratio", "criterion": ">= 5 (the seed: 15.8)",
+         "agrees": slow["time_per_step_median"] / fast["time_per_step_median"] >= 5, "size": "main-job",
+         "note": f"{slow['time_per_step_median']:.4g} s against {fast['time_per_step_median']:.4g} s per step, CHOLMOD both."},
+        {"id": "s6.3.simplification_over_generation", "source": src,
+         "quantity": "simplification seconds / quadrature generation seconds",
+         "paper_value": round(5.23 / 0.255, 2), "measured": q["simplification_seconds"] / q["generation_seconds"],
+         "unit": "ratio", "criterion": ">= 5 (the LPs dominate the set-up; the seed: 255 ms and 5.23 s)",
+         "agrees": q["simplification_seconds"] / q["generation_seconds"] >= 5, "size": "main-job",
+         "note": f"generation {q['generation_seconds']:.3g} s, simplification {q['simplification_seconds']:.3g} s."},
+        {"id": "s6.3.pays_off", "source": src, "quantity": "steps after which the simplification has paid for itself",
+         "paper_value": round(5.23 / ((5691 - 359) / 1000.0), 2), "measured": q["simplification_seconds"] / saved,
+         "unit": "steps", "criterion": "<= 10 (within one of our runs; the seed: after the first step)",
+         "agrees": q["simplification_seconds"] / saved <= 10, "size": "main-job",
+         "note": f"{q['simplification_seconds']:.3g} s of LPs against {saved:.3g} s saved per step."},
+        {"id": "s6.3.rms_unchanged", "source": src, "quantity": "|surface RMS with / without simplification - 1|",
+         "paper_value": round(abs(0.0149 / 0.0153 - 1), 4), "measured": abs(fast["metric"] / slow["metric"] - 1),
+         "unit": "relative", "criterion": "<= 0.05 (the seed: 0.0149 against 0.0153 m)",
+         "agrees": abs(fast["metric"] / slow["metric"] - 1) <= 0.05, "size": "main-job",
+         "note": f"{fast['metric']:.5g} against {slow['metric']:.5g} (max over frames)."},
+    ]
+
+
+def fig10_rows(R):
+    v = R["verification"]
+    g = "embedded.fig10"
+    src = "Longva et al. 2020, §6.6, Fig. 10"
+    out = []
+    for cid, name, paper, criterion, ok in [
+        ("fig10.fcm_hex8_rate", "FCM Hex8 L2 rate h=1/16 -> 1/32", 2, ">= 1.8 (optimal O(h^2))", lambda x: x >= 1.8),
+        ("fig10.fcm_hex20_rate", "FCM Hex20 L2 rate h=1/16 -> 1/32", 3, ">= 2.7 (optimal O(h^3))", lambda x: x >= 2.7),
+        ("fig10.staircase_hex8_rate", "staircase FEM Hex8 L2 rate h=1/16 -> 1/32", 1,
+         "<= 1.5 ('dramatically reduced' by the voxel geometry)", lambda x: x <= 1.5),
+        ("fig10.staircase_hex20_rate", "staircase FEM Hex20 L2 rate h=1/16 -> 1/32", 1,
+         "<= 1.5 ('dramatically reduced' by the voxel geometry)", lambda x: x <= 1.5),
+    ]:
+        x = v[(g, name)]
+        out.append({"id": cid, "source": src, "quantity": f"L2 convergence rate, {name.split(' L2')[0]}, h = 1/16 -> 1/32",
+                    "paper_value": paper, "measured": x, "unit": "rate", "criterion": criterion, "agrees": bool(ok(x)),
+                    "size": "main-job",
+                    "note": "Verification rows of embedded.fig10 (a clamped half ball under load, linear elasticity; "
+                            "the seed's slopes read from its figure)."})
+    return out
+
+
+def markdown(rows):
+    lines = ["# The seeds' numbers beside hofem's", "",
+             "Written by `scripts/paper_claims.py` from the main job's reports; the criterion of each row was written "
+             "before the measurement it judges. " + f"{sum(r['agrees'] for r in rows)} of {len(rows)} rows agree.", "",
+             "| id | source | quantity | paper | hofem | criterion | agrees | note |", "|---|---|---|---:|---:|---|---|---|"]
+    for r in rows:
+        fmt = lambda x: "—" if x is None else (f"{x:.4g}" if isinstance(x, float) else str(x))
+        lines.append(f"| {r['id']} | {r['source']} | {r['quantity']} | {fmt(r['paper_value'])} | {fmt(r['measured'])} "
+                     f"| {r['criterion']} | {'yes' if r['agrees'] else '**no**'} | {r['note']} |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv):
+    reports = argv[1] if len(argv) > 1 and not argv[1].startswith("--") else "reports"
+    out = argv[argv.index("--out") + 1] if "--out" in argv else reports
+    try:
+        R = load(reports)
+        rows = twisting_cylinder_rows(R) + simplification_rows(R) + fig10_rows(R)
+    except (OSError, KeyError) as e:
+        print(f"paper_claims: cannot build the table from {reports}: {e!r}", file=sys.stderr)
+        return 1
+    for r in rows:
+        r["agrees"] = bool(r["agrees"])
+    os.makedirs(out, exist_ok=True)
+    with open(os.path.join(out, "paper_claims.json"), "w") as f:
+        json.dump({"rows": rows}, f, indent=1)
+        f.write("\n")
+    with open(os.path.join(out, "paper_claims.md"), "w") as f:
+        f.write(markdown(rows))
+    print(f"paper_claims: {sum(r['agrees'] for r in rows)} of {len(rows)} rows agree -> {out}/paper_claims.md")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
