@@ -202,7 +202,7 @@ def main(argv):
         R = load(reports)
         rows = twisting_cylinder_rows(R) + simplification_rows(R) + fig10_rows(R)
     except (OSError, KeyError) as e:
-        print(f"paper_claims: cannot build the table from {reports}: {e!r}", file=sys.stderr)
+        print(f"paper_claims: cannot build the table from {reports}: {type(e).__name__}: {e}", file=sys.stderr)
         return 1
     for r in rows:
         r["agrees"] = bool(r["agrees"])
