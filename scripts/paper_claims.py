@@ -6,7 +6,8 @@ figure), quantity, paper_value, measured, unit, criterion (written here, before
 any measurement it judges), agrees, size (main-job or full), note.
 
 Sources: Longva et al. 2020, "Higher-order finite elements for embedded
-simulation" (Table 1, §6.2-6.3, Fig. 10). The twisting cylinder is scaled: the
+simulation" (Table 1, §6.2-6.3, Fig. 10), and the thesis on a high-order FEM
+simulator (§5.3.1, Figs. 10-11: the drop's integrators). The twisting cylinder is scaled: the
 seed's is 16 m long with E = 5e6, nu = 0.48 and a 0.015 m RMS threshold; ours
 (scripts/studies/twisting-cylinder.json) is 3 m long (radii 0.5 / 1 m), the
 same material, 1 s of a 2 s quarter turn at dt = 0.1, and the threshold scaled
@@ -17,6 +18,7 @@ Exits 1 if a source file is missing (the row would be silent garbage)."""
 import json
 import math
 import os
+import re
 import sys
 
 THRESHOLD = 0.003  # the twisting cylinder's scaled threshold (above)
@@ -183,6 +185,55 @@ def fig10_rows(R):
     return out
 
 
+def drop_integrator_rows(R):
+    """Thesis §5.3.1, Figs. 10-11: the drop at one dt = 1e-3 for explicit,
+    semi-implicit and implicit Euler (27 vertices, 48 tets here; the thesis: 20
+    and 24), each against an RK4 run at dt = 1e-4; contact at t = sqrt(2 x 0.5 /
+    9.81) = 0.32 s."""
+    st = R["studies"]["drop-integrators"]
+    runs = {r["name"]: r for r in st["runs"]}
+    src = "thesis §5.3.1, Figs. 10-11"
+    contact = math.sqrt(2 * 0.5 / 9.81)
+    ex, semi, imp = runs["explicit-euler"], runs["semi-implicit"], runs["implicit-euler"]
+    if ex["ok"]:
+        dev = [f["surface_rms"] for f in ex["frames"] if f["t"] > contact]
+        fails_at, grows = math.inf, all(b > a for a, b in zip(dev, dev[1:]))
+    else:
+        match = re.search(r"t = ([0-9.eE+-]+)", ex["message"])
+        fails_at, grows = (float(match.group(1)) if match else math.nan), True
+    ratio = semi["metric"] / imp["metric"]
+    return [
+        {"id": "thesis.drop.explicit_unstable_after_contact", "source": src,
+         "quantity": "explicit Euler at dt = 1e-3: the time it fails by energy growth (inf: it does not)",
+         "paper_value": "deviates after contact, ever more (instability)", "measured": fails_at, "unit": "s",
+         "criterion": f"fails after the contact (t > {contact:.2f} s) or its deviation from the reference grows from "
+                      "frame to frame after it; the implicit runs complete",
+         "agrees": bool(fails_at > contact and grows and semi["ok"] and imp["ok"]), "size": "main-job",
+         "note": ex["message"] if not ex["ok"] else "completed"},
+        {"id": "thesis.drop.semi_implicit_follows_implicit", "source": src,
+         "quantity": "semi-implicit's deviation from the reference / implicit Euler's (surface RMS, max over frames)",
+         "paper_value": "consistent trend, acceptable error", "measured": ratio, "unit": "ratio",
+         "criterion": "within [0.5, 2]", "agrees": bool(0.5 <= ratio <= 2), "size": "main-job",
+         "note": f"semi-implicit {semi['metric']:.3g}, implicit {imp['metric']:.3g} m: both first order, both damp "
+                 "the bounce at this dt."},
+        {"id": "thesis.drop.explicit_faster_than_semi_implicit", "source": src,
+         "quantity": "time per step, semi-implicit / explicit Euler", "paper_value": round(120 / 45, 3),
+         "measured": semi["time_per_step_median"] / ex["time_per_step_median"], "unit": "ratio",
+         "criterion": "> 1 (the thesis: 120 against 45 frames per second)",
+         "agrees": bool(semi["time_per_step_median"] > ex["time_per_step_median"]), "size": "main-job",
+         "note": f"{ex['time_per_step_median'] * 1e3:.3g} ms against {semi['time_per_step_median'] * 1e3:.3g} ms."},
+        {"id": "thesis.drop.semi_implicit_faster_than_implicit", "source": src,
+         "quantity": "time per step, implicit / semi-implicit Euler", "paper_value": round(45 / 5, 3),
+         "measured": imp["time_per_step_median"] / semi["time_per_step_median"], "unit": "ratio",
+         "criterion": "> 1 (the thesis: 45 against 5 frames per second)",
+         "agrees": bool(imp["time_per_step_median"] > semi["time_per_step_median"]), "size": "main-job",
+         "note": f"{semi['time_per_step_median'] * 1e3:.3g} ms against {imp['time_per_step_median'] * 1e3:.3g} ms. "
+                 "hofem's semi-implicit step projects every quadrature point's stress derivative to positive "
+                 "semi-definite (a 9 x 9 eigendecomposition, ~25 % of its profile) where implicit Euler's Newton "
+                 "(1.7 iterations per step here) does not, and on 48 tets OpenMP's barriers dominate both."},
+    ]
+
+
 def markdown(rows):
     lines = ["# The seeds' numbers beside hofem's", "",
              "Written by `scripts/paper_claims.py` from the main job's reports; the criterion of each row was written "
@@ -200,12 +251,15 @@ def main(argv):
     out = argv[argv.index("--out") + 1] if "--out" in argv else reports
     try:
         R = load(reports)
-        rows = twisting_cylinder_rows(R) + simplification_rows(R) + fig10_rows(R)
+        rows = twisting_cylinder_rows(R) + simplification_rows(R) + fig10_rows(R) + drop_integrator_rows(R)
     except (OSError, KeyError) as e:
         print(f"paper_claims: cannot build the table from {reports}: {type(e).__name__}: {e}", file=sys.stderr)
         return 1
     for r in rows:
         r["agrees"] = bool(r["agrees"])
+        if isinstance(r["measured"], float) and not math.isfinite(r["measured"]):
+            r["note"] = f"measured {r['measured']}; " + r["note"]
+            r["measured"] = None  # JSON has no infinity
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "paper_claims.json"), "w") as f:
         json.dump({"rows": rows}, f, indent=1)
