@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <stdexcept>
 #include <tuple>
 
@@ -73,7 +74,7 @@ Mesh mapped_mesh(const Mesh& box, std::vector<int> target, const Map& map,
 
 std::vector<int> identity(int n) {
   std::vector<int> t(n);
-  for (int i = 0; i < n; ++i) t[i] = i;
+  std::iota(t.begin(), t.end(), 0);
   return t;
 }
 

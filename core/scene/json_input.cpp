@@ -24,6 +24,14 @@ std::string without_tag(const char* what) {
 
 }  // namespace
 
+std::string read_json_file(const std::string& path, const char* what) {
+  try {
+    return read_input_file(path, what, input_limits().scene_file_bytes);
+  } catch (const InputError& e) {
+    throw SceneError(e.what());
+  }
+}
+
 std::string brief(const json& j) {
   std::string s = j.dump();
   if (s.size() > 60) s = s.substr(0, 60) + "...";

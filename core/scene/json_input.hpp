@@ -26,6 +26,11 @@ std::string brief(const nlohmann::json& j);
 /// included). Brackets inside strings do not count.
 void check_nesting(const std::string& text, const std::string& origin);
 
+/// The text of a scene or study file (read_input_file's checks: regular files
+/// only, "-" is stdin, at most the scene-file cap); errors are SceneError.
+/// `what` names it in messages ("the study file").
+std::string read_json_file(const std::string& path, const char* what);
+
 /// Parses the JSON, tracking the key path of the value being read so that a
 /// number the parser cannot hold (1e999) is reported with its key and a key that
 /// appears twice in its object is refused; `document` names the top level.

@@ -291,13 +291,7 @@ Scene parse_validated(const json& j, const std::string& origin) {
 }  // namespace
 
 Scene read_scene(const std::string& path, const SceneOverrides& overrides) {
-  std::string text;
-  try {
-    text = read_input_file(path, "the scene file", input_limits().scene_file_bytes);
-  } catch (const InputError& e) {
-    throw SceneError(e.what());
-  }
-  return parse_scene(text, path == "-" ? "<stdin>" : path, overrides);
+  return parse_scene(read_json_file(path, "the scene file"), path == "-" ? "<stdin>" : path, overrides);
 }
 
 namespace {

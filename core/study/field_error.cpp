@@ -47,6 +47,7 @@ BodyQuadrature body_quadrature(const Mesh& mesh, int degree,
   q.at.element.resize(n);
   q.at.xi.resize(3, n);
   q.at.extrapolated.assign(n, 0);
+  q.J_inverse.resize(n);
   const Eigen::MatrixXd& ref_nodes = lagrange_basis(mesh.cell, mesh.order).nodes();
   for_each_point(mesh, degree, own_rules, [&](int e, const BasisTabulation& tab, int p, long long k, double w) {
     Eigen::Vector3d X = Eigen::Vector3d::Zero(), xi = Eigen::Vector3d::Zero();
@@ -59,6 +60,7 @@ BodyQuadrature body_quadrature(const Mesh& mesh, int degree,
     }
     q.X.col(k) = X;
     q.w[k] = w * std::abs(J.determinant());
+    q.J_inverse[k] = J.inverse();
     q.at.element[k] = e;
     q.at.xi.col(k) = xi;
   });
@@ -71,15 +73,14 @@ PointValues BodyQuadrature::values(const Mesh& mesh, const Eigen::VectorXd& u) c
   out.gradient.resize(w.size());
   for_each_point(mesh, degree, own_rules, [&](int e, const BasisTabulation& tab, int p, long long k, double) {
     Eigen::Vector3d v = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d J = Eigen::Matrix3d::Zero(), G = Eigen::Matrix3d::Zero();
+    Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
     for (int i = 0; i < tab.num_basis; ++i) {
       const int node = mesh.elements(i, e);
       v += tab.values(i, p) * u.segment<3>(3 * node);
-      J += mesh.nodes.col(node) * tab.gradient(p).row(i);
       G += u.segment<3>(3 * node) * tab.gradient(p).row(i);
     }
     out.value.col(k) = v;
-    out.gradient[k] = G * J.inverse();
+    out.gradient[k] = G * J_inverse[k];
   });
   return out;
 }

@@ -30,6 +30,7 @@ struct BodyQuadrature {
   Eigen::Matrix3Xd X;    ///< undeformed positions
   Eigen::VectorXd w;     ///< physical weights (reference weight x |det J|)
   EmbeddedPointMap at;   ///< element and xi in the body's own mesh
+  std::vector<Eigen::Matrix3d> J_inverse;  ///< dxi/dX at each point, for the gradients of every state
   int degree = 0;
   std::vector<std::shared_ptr<const ElementQuadrature>> own_rules;
   double volume() const { return w.sum(); }

@@ -29,9 +29,8 @@ RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std
       return;
     }
     for (size_t f = 0; f < frame_times.size(); ++f) {
-      const double target = scene.is_static ? 1.0 : frame_times[f];
-      if (std::abs(s.t - target) < gap[f]) {
-        gap[f] = std::abs(s.t - target);
+      if (std::abs(s.t - frame_times[f]) < gap[f]) {
+        gap[f] = std::abs(s.t - frame_times[f]);
         run.times[f + 1] = s.t;
         run.states[f + 1] = s.u;
       }

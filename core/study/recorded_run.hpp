@@ -34,7 +34,7 @@ struct RecordedRun {
 /// Runs the scene without frames into `out_dir` (stats.json only; empty: no
 /// files) and records
 /// its state at t = 0 and at each time in `frame_times` (ascending; at most the
-/// scene's duration). A run that fails is returned with ok = false, its message
+/// scene's duration; a static scene's solution is at t = 1). A run that fails is returned with ok = false, its message
 /// and what it recorded.
 RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times);
 

@@ -1,6 +1,5 @@
 #include "study/study_file.hpp"
 
-#include "mesh/input_file.hpp"
 #include "scene/json_input.hpp"
 
 #include <algorithm>
@@ -112,13 +111,7 @@ Study parse_study(const std::string& text, const std::string& origin) {
 }
 
 Study read_study(const std::string& path) {
-  std::string text;
-  try {
-    text = read_input_file(path, "the study file", input_limits().scene_file_bytes);
-  } catch (const InputError& e) {
-    throw SceneError(e.what());
-  }
-  return parse_study(text, path == "-" ? "<stdin>" : path);
+  return parse_study(read_json_file(path, "the study file"), path == "-" ? "<stdin>" : path);
 }
 
 }  // namespace hofem

@@ -67,10 +67,6 @@ class TriangleDistanceQuery {
   /// To the nearest point of the surface. Throws std::invalid_argument for a
   /// non-finite p.
   double distance(const Eigen::Vector3d& p) const;
-  /// Cells along x, y, z (for tests and reports).
-  Eigen::Vector3i cells() const { return n_; }
-  /// Triangle entries over all cells (a triangle is in every cell its bounding box touches).
-  std::size_t cell_entries() const { return entries_.size(); }
 
  private:
   struct Triangle {
