@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <type_traits>
 
@@ -255,6 +257,26 @@ Eigen::VectorXd Assembler::element_volumes() const {
     });
   });
   return volume;
+}
+
+Eigen::VectorXd Assembler::element_min_det_F(const Eigen::VectorXd& x) const {
+  check_size(x, mesh_);
+  Eigen::VectorXd out(mesh_.num_elements());
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, x.data(), e, ws);
+      double m = std::numeric_limits<double>::infinity();
+      const Eigen::VectorXd& w = weights_of(e);
+      for (int q = 0; q < w.size(); ++q) {
+        reference_gradients(tabulation_of(e), w, q, ws);
+        const Mat3 F = ws.x.lazyProduct(ws.dNdX);
+        m = std::min(m, F.determinant());
+      }
+      out[e] = m;
+    });
+  });
+  return out;
 }
 
 double Assembler::gradient(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g) const {

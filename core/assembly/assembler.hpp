@@ -60,6 +60,10 @@ class Assembler {
   Eigen::VectorXd element_energies(const Material& mat, const Eigen::VectorXd& x) const;
   /// Reference volume of each element (the stiffness rule integrates 1 exactly).
   Eigen::VectorXd element_volumes() const;
+  /// Per element, the smallest det F (the local volume ratio) over its stiffness
+  /// quadrature points at positions x; <= 0 where the element is inverted there.
+  /// +inf for an element without points (an empty finite cell).
+  Eigen::VectorXd element_min_det_F(const Eigen::VectorXd& x) const;
   /// Elastic energy; g (resized to 3 * num_nodes) receives the internal force vector.
   double gradient(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g) const;
   /// Energy, internal forces g (all DOFs) and the Hessian K over the free DOFs

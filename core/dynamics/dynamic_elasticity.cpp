@@ -174,6 +174,9 @@ void DynamicElasticity::ensure_linear_solver() {
   stats_.linear_solver_reason = choice.reason;
   solver_ = make_problem_solver(dist_.get(), rows_, choice.solver, options_.distributed_solver, mesh_, dofs_,
                                 options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
+  if (options_.krylov_iterations > 0 && !solver_->set_fixed_iterations(options_.krylov_iterations))
+    throw std::invalid_argument(fmt::format("krylov_iterations = {} needs a Krylov solver, not {}",
+                                            options_.krylov_iterations, solver_->name()));
   K_ = assembler_->new_matrix();
 }
 

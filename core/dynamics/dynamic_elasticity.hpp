@@ -58,6 +58,9 @@ struct DynamicsOptions {
   /// A make_linear_solver() name, or "auto" (solver/solver_choice.hpp); the one
   /// used is DynamicsStats::linear_solver.
   std::string linear_solver = "auto";
+  /// > 0: every linear solve runs exactly this many Krylov iterations and takes
+  /// the iterate (LinearSolver::set_fixed_iterations); needs a Krylov solver.
+  int krylov_iterations = 0;
   /// Distributed over the ranks of MPI_COMM_WORLD (issue 7; implicit Euler
   /// without stiffness damping so far): each rank keeps its piece of the mesh
   /// (recursive coordinate bisection; its elements with their owned and ghost

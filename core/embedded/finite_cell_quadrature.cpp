@@ -211,34 +211,60 @@ StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& c
                                        const FiniteCellStabilisation& options) {
   if (!(options.drop_fraction >= 0.0 && options.drop_fraction < 1.0) || !(options.stabilisation >= 0.0))
     throw std::invalid_argument("stabilise_finite_cells: needs 0 <= drop_fraction < 1 and stabilisation >= 0");
-  const size_t ne = background.num_elements();
-  if (cells.rules.size() != ne || cells.mass_rules.size() != ne || cells.volume_fraction.size() != ne)
+  const int ne = background.num_elements();
+  if (cells.rules.size() != size_t(ne) || cells.mass_rules.size() != size_t(ne) ||
+      cells.volume_fraction.size() != size_t(ne))
     throw std::invalid_argument("stabilise_finite_cells: the rules are not those of this background mesh");
   const CellType cell = background.cell;
   const int p = background.order;
   const QuadratureRule& gauss =
       quadrature_rule(cell, options.gauss_degree >= 0 ? options.gauss_degree : 2 * background.order);
-  auto with_gauss = [&](const std::shared_ptr<const ElementQuadrature>& cut) {
-    const QuadratureRule& r = cut->rule;
-    Eigen::MatrixXd points(3, r.size() + gauss.size());
-    Eigen::VectorXd weights(r.size() + gauss.size());
-    points << r.points, gauss.points;
-    weights << r.weights, options.stabilisation * gauss.weights;
-    return make_rule(cell, p, std::move(points), std::move(weights));
+  auto with_gauss_points = [&](const QuadratureRule& r) {
+    std::pair<Eigen::MatrixXd, Eigen::VectorXd> out{Eigen::MatrixXd(3, r.size() + gauss.size()),
+                                                    Eigen::VectorXd(r.size() + gauss.size())};
+    out.first << r.points, gauss.points;
+    out.second << r.weights, options.stabilisation * gauss.weights;
+    return out;
   };
-  StabilisedCells out;
-  for (size_t e = 0; e < ne; ++e) {
+  enum Fate : char { Untouched, Dropped, Stabilised };
+  std::vector<Fate> fate(ne, Untouched);
+  std::vector<char> folded(ne, 0);
+  std::vector<double> lp_seconds(ne, 0.0);
+  // Cells are independent; the folds' LPs make cut cells far costlier than the rest.
+#pragma omp parallel for schedule(dynamic, 4)
+  for (int e = 0; e < ne; ++e) {
     const double f = cells.volume_fraction[e];
     if (f <= 0.0 || !cells.rules[e] || f >= 1.0 - 1e-12) continue;  // empty or uncut
     if (f < options.drop_fraction) {
       cells.rules[e] = cells.mass_rules[e] = empty_rule(cell, p);
-      out.dropped.push_back(static_cast<int>(e));
+      fate[e] = Dropped;
       continue;
     }
     if (options.stabilisation == 0.0) continue;
-    cells.rules[e] = with_gauss(cells.rules[e]);
-    if (options.mass && cells.mass_rules[e]) cells.mass_rules[e] = with_gauss(cells.mass_rules[e]);
-    out.stabilised.push_back(static_cast<int>(e));
+    auto [xs, ws] = with_gauss_points(cells.rules[e]->rule);
+    if (options.simplify_degree >= 0) {
+      const auto tl = Clock::now();
+      SimplifiedRule s = simplify_quadrature(xs, ws, options.simplify_degree);
+      lp_seconds[e] = seconds_since(tl);
+      if (s.simplified) {
+        xs = std::move(s.points);
+        ws = std::move(s.weights);
+        folded[e] = 1;
+      }
+    }
+    cells.rules[e] = make_rule(cell, p, std::move(xs), std::move(ws));
+    if (options.mass && cells.mass_rules[e]) {
+      auto [xm, wm] = with_gauss_points(cells.mass_rules[e]->rule);
+      cells.mass_rules[e] = make_rule(cell, p, std::move(xm), std::move(wm));
+    }
+    fate[e] = Stabilised;
+  }
+  StabilisedCells out;
+  for (int e = 0; e < ne; ++e) {
+    if (fate[e] == Dropped) out.dropped.push_back(e);
+    if (fate[e] == Stabilised) out.stabilised.push_back(e);
+    out.folded += folded[e];
+    out.simplification_seconds += lp_seconds[e];
   }
   return out;
 }

@@ -15,7 +15,7 @@
 //   "integrator": "implicit-euler" | ... | "static",
 //   "dt": 0.01, "duration": 1.0,                    (not for "static")
 //   "mass": "lumped" | "consistent", "lumping": "row-sum" | "hrz",          (optional)
-//   "solver": {"linear": "auto", "newton_rtol": 1e-8, "newton_max_iterations": 50,
+//   "solver": {"linear": "auto", "krylov_iterations": 12, "newton_rtol": 1e-8, "newton_max_iterations": 50,
 //              "eisenstat_walker": false},                                (optional)
 //   "gravity": [0, 0, -9.81],                                             (optional)
 //   "damping": {"alpha": 0, "beta": 0},                                   (optional)
@@ -43,7 +43,8 @@
 // runner integrates over the geometry only (finite-cell rules built once), drops
 // cut cells whose volume fraction is below drop_fraction and adds the full cell's
 // Gauss points at weight `stabilisation` to the other cut cells, simplifies the
-// cut cells' stiffness rules when `simplify` (embedded/finite_cell_quadrature.hpp).
+// cut cells' stiffness rules when `simplify`, the added Gauss points included
+// (embedded/finite_cell_quadrature.hpp).
 // The geometry must lie inside the background. Boundary selections ("box" and
 // named sets) pick BACKGROUND nodes: put the embedded body's clamped faces on
 // grid planes and select those planes' nodes (e.g. "zmin"); background nodes of

@@ -59,8 +59,13 @@ SceneEmbedding::SceneEmbedding(const Scene& s, const Mesh& background) : backgro
     throw SceneError(fmt::format("{}: embedded: {:.3g} % of the geometry's volume lies outside the background mesh",
                                  s.file, 100.0 * (1.0 - captured / geometry_volume)));
 
-  const StabilisedCells stabilised =
-      stabilise_finite_cells(background, cells_, {options.drop_fraction, options.stabilisation});
+  FiniteCellStabilisation stabilisation;
+  stabilisation.drop_fraction = options.drop_fraction;
+  stabilisation.stabilisation = options.stabilisation;
+  // A simplified scene folds the stabilisation into its simplified rules (at most
+  // C(m+3, 3) points per cut cell, finite_cell_quadrature.hpp).
+  if (options.simplify) stabilisation.simplify_degree = cells_.stiffness_degree;
+  const StabilisedCells stabilised = stabilise_finite_cells(background, cells_, stabilisation);
   // Points the cut cells assemble with, stabilisation included.
   long long stiffness_in_use = 0, mass_in_use = 0;
   for (int e = 0; e < ne; ++e)
@@ -93,7 +98,8 @@ SceneEmbedding::SceneEmbedding(const Scene& s, const Mesh& background) : backgro
         {"cut", cut},
         {"empty", empty},
         {"dropped", stabilised.dropped.size()},
-        {"stabilised", stabilised.stabilised.size()}}},
+        {"stabilised", stabilised.stabilised.size()},
+        {"stabilisation_folded", stabilised.folded}}},
       {"nodes", {{"active", active_count}, {"inactive", background.num_nodes() - active_count}}},
       {"drop_fraction", options.drop_fraction},
       {"stabilisation", options.stabilisation},
@@ -109,6 +115,7 @@ SceneEmbedding::SceneEmbedding(const Scene& s, const Mesh& background) : backgro
         {"max_moment_residual", cells_.max_moment_residual},
         {"generation_seconds", cells_.generation_seconds},
         {"simplification_seconds", cells_.simplification_seconds},
+        {"stabilisation_simplification_seconds", stabilised.simplification_seconds},
         {"wall_seconds", cells_.wall_seconds}}},
       {"surface_vertices_extrapolated", surface_map_.num_extrapolated},
       {"setup_seconds", std::chrono::duration<double>(Clock::now() - t0).count()}};

@@ -74,6 +74,34 @@ void add_displacement_curve(const Mesh& mesh, const Eigen::VectorXd& u, const Sc
   row["lowest_z"] = (X + d).row(2).minCoeff();
 }
 
+// Inversion over a run (the thesis §5.2, Fig. 9: StVK inverts under strong
+// compression, Neo-Hookean does not): the smallest det F over the stiffness
+// quadrature points and how many elements have det F <= 0 somewhere, per step
+// and over the run.
+struct VolumeRatioRecord {
+  double min_det_F = std::numeric_limits<double>::infinity();
+  double t_min = 0.0;
+  int max_inverted = 0, steps_with_inversion = 0;
+  json to_json() const {
+    return {{"min_det_F", std::isfinite(min_det_F) ? json(min_det_F) : json(nullptr)},
+            {"t_of_min_det_F", t_min},
+            {"max_inverted_elements", max_inverted},
+            {"steps_with_inverted_elements", steps_with_inversion}};
+  }
+};
+void add_volume_ratio(const Eigen::VectorXd& min_det_F, json& row, VolumeRatioRecord& record) {
+  const double m = min_det_F.size() ? min_det_F.minCoeff() : std::numeric_limits<double>::infinity();
+  const int inverted = static_cast<int>((min_det_F.array() <= 0.0).count());
+  row["min_det_F"] = std::isfinite(m) ? json(m) : json(nullptr);
+  row["inverted_elements"] = inverted;
+  if (m < record.min_det_F) {
+    record.min_det_F = m;
+    record.t_min = row["t"].get<double>();
+  }
+  record.max_inverted = std::max(record.max_inverted, inverted);
+  record.steps_with_inversion += inverted > 0;
+}
+
 // Stiffness quadrature points over the whole mesh: the standard rule's in every
 // element, or a finite cell's own rule where it has one (scene_embedding.hpp).
 long long stiffness_points(const Mesh& mesh, int standard, const SceneEmbedding* embedding) {
@@ -280,6 +308,7 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
       if (writer) options.observer(SceneState{mesh, emb, 0, sim.time(), u0});
     }
     json per_step = json::array();
+    VolumeRatioRecord deformation;
     int done = 0;
     for (int k = 1; k <= steps; ++k) {
       const StepReport r = sim.step();
@@ -298,6 +327,7 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
                        {"total", e.total()}};
       const Eigen::VectorXd u = nodal(piece, sim.displacement());  // gathered: the writer's curve
       if (writer) add_displacement_curve(mesh, u, emb, row);
+      add_volume_ratio(elemental(piece, sim.assembler().element_min_det_F(sim.positions())), row, deformation);
       if (writer && options.observer) options.observer(SceneState{mesh, emb, k, r.time, u});
       per_step.push_back(row);
       done = k;
@@ -309,6 +339,7 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
     st["duration"] = s.duration;
     st["steps"] = per_step;
     st["steps_done"] = done;
+    st["deformation"] = deformation.to_json();
     st["stepping_seconds"] = std::chrono::duration<double>(Clock::now() - t_steps).count();  // frames included
     st["built"] = stats_json(sim.stats());
     if (piece && done > 0) st["per_rank"] = to_json(gather_rank_stats(sim.rank_stats(), piece->comm));

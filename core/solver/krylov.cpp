@@ -308,11 +308,19 @@ void KrylovSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   const SparseMatrixOperator sparse(*A_);
   const BlockOperator<double> block(block_);
   const LinearOperator& A = use_block_ ? static_cast<const LinearOperator&>(block) : sparse;
-  if (method_ == "cg") last_ = conjugate_gradient(A, b, x, *M_, options_);
-  else if (method_ == "cr") last_ = conjugate_residual(A, b, x, *M_, options_);
-  else if (method_ == "minres") last_ = minres(A, b, x, *M_, options_);
-  else last_ = gmres(A, b, x, *M_, options_);
-  if (!last_.converged)
+  KrylovOptions options = options_;
+  if (fixed_iterations_ > 0) {  // exactly k iterations: no tolerance can stop them earlier
+    options.rtol = 0.0;
+    options.max_iterations = fixed_iterations_;
+  }
+  if (method_ == "cg") last_ = conjugate_gradient(A, b, x, *M_, options);
+  else if (method_ == "cr") last_ = conjugate_residual(A, b, x, *M_, options);
+  else if (method_ == "minres") last_ = minres(A, b, x, *M_, options);
+  else last_ = gmres(A, b, x, *M_, options);
+  // A fixed budget accepts the iterate it reached; a breakdown (an indefinite
+  // system) is still an error.
+  const bool accepted = last_.converged || (fixed_iterations_ > 0 && last_.breakdown.empty() && x.allFinite());
+  if (!accepted)
     throw std::runtime_error(fmt::format("{}: no convergence ({} iterations, relative residual {:.3e}){}{}", name_,
                                          last_.iterations, last_.relative_residual, last_.breakdown.empty() ? "" : ": ",
                                          last_.breakdown));

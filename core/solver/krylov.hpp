@@ -70,6 +70,10 @@ class KrylovSolver final : public LinearSolver {
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
   void set_discretization(const Discretization& d) override { M_->set_discretization(d); }
   void set_relative_tolerance(double rtol) override { options_.rtol = rtol; }
+  bool set_fixed_iterations(int k) override {
+    fixed_iterations_ = k > 0 ? k : 0;
+    return true;
+  }
   bool is_iterative() const override { return true; }
   int last_iterations() const override { return last_.iterations; }
   std::string last_error() const override { return M_->last_error(); }
@@ -86,6 +90,7 @@ class KrylovSolver final : public LinearSolver {
   BlockSparseMatrix<double> block_;
   std::uint64_t block_pattern_ = 0;
   bool use_block_ = false;
+  int fixed_iterations_ = 0;  ///< > 0: set_fixed_iterations
   KrylovResult last_;
 };
 

@@ -30,6 +30,12 @@ class LinearSolver {
   /// Relative residual target of an iterative solver (Newton's inexact,
   /// Eisenstat-Walker tolerances); direct solvers ignore it.
   virtual void set_relative_tolerance(double) {}
+  /// k > 0: every solve runs exactly k iterations of an iterative solver and
+  /// returns that iterate, converged or not - a fixed work budget per solve (the
+  /// thesis §5.3.2, Fig. 12: "3 iterations CG, 3 iterations PCR, 12 iterations
+  /// CG"); k <= 0 restores convergence to the tolerance. Returns false for a
+  /// solver that has no iterations to fix (direct solvers).
+  virtual bool set_fixed_iterations(int) { return false; }
   virtual bool is_iterative() const { return false; }
   /// Iterations of the last solve (0 for direct solvers).
   virtual int last_iterations() const { return 0; }

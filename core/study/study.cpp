@@ -30,7 +30,9 @@ double median(std::vector<double> v) {
 
 // Cost and size of a run, from its stats.json (scene_runner.hpp).
 json cost_of(const RecordedRun& r) {
-  const json& st = r.stats;
+  // A run that failed before its first step (a mesh refused) has no statistics.
+  static const json none = json::object();
+  const json& st = r.stats.is_object() ? r.stats : none;
   std::vector<double> seconds;
   if (st.contains("steps"))
     for (const json& row : st["steps"]) seconds.push_back(row.value("seconds", 0.0));

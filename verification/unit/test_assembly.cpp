@@ -123,6 +123,25 @@ TEST(StaticElasticity, RejectsInvertedInputMeshWithTheElementIndex) {
 }
 
 // The consistent mass matrix of any order integrates rho over the body exactly.
+// min det F per element: 1 at rest, 8 under x = 2 X, -1 under a mirror
+// (x = -X, Y, Z) that inverts every element; for these affine maps F is the
+// same at every quadrature point, so the values are exact up to round-off in
+// J^-1 (1e-12 relative is 1e4 eps, well above it).
+TEST(Assembler, ElementMinDetFSeesVolumeChangeAndInversion) {
+  const Mesh mesh = box_mesh(unit_cube(2), CellType::Tetrahedron, 2);
+  const DofMap dofs(mesh.num_nodes(), {});
+  const Assembler a(mesh, dofs);
+  const Eigen::VectorXd X = Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), 3 * mesh.num_nodes());
+  Eigen::VectorXd mirrored = X;
+  for (int i = 0; i < mesh.num_nodes(); ++i) mirrored[3 * i] = -X[3 * i];
+  const Eigen::VectorXd at_rest = a.element_min_det_F(X), doubled = a.element_min_det_F(2.0 * X),
+                        inverted = a.element_min_det_F(mirrored);
+  ASSERT_EQ(at_rest.size(), mesh.num_elements());
+  EXPECT_LE((at_rest.array() - 1.0).abs().maxCoeff(), 1e-12);
+  EXPECT_LE((doubled.array() - 8.0).abs().maxCoeff(), 8e-12);
+  EXPECT_LE((inverted.array() + 1.0).abs().maxCoeff(), 1e-12);
+}
+
 TEST(Assembler, ConsistentMassMatrixTotalMass) {
   for (int p = 1; p <= 4; ++p) {
     const Mesh m = box_mesh(BoxSpec{{0, 0, 0}, {2, 1, 1}, {2, 1, 1}}, CellType::Tetrahedron, p);

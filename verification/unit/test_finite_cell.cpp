@@ -137,6 +137,44 @@ TEST(FiniteCell, StabilisationBoundsTheCutCellStiffnessFromBelow) {
   EXPECT_GE(stabilised, 1e-6 * full * (1.0 - 1e-9));
 }
 
+// Folding the stabilisation into the simplified rule (simplify_degree) leaves at
+// most C(m+3, 3) points and the same stiffness: the linear-elastic Hex8 stiffness
+// of an affine cell is a polynomial of degree 2 (d - 1) = 4 <= m, so the folded
+// rule reproduces the unfolded K to the LP's moment tolerance (1e-11 relative to
+// the weights' sum; K's entries are O(1), so 1e-9 of max |K| is far above that
+// round-off and far below the stabilised part, 1e-6 of the full cell).
+TEST(FiniteCell, FoldedStabilisationKeepsTheStiffnessWithFewerPoints) {
+  const Mesh cell = box_mesh(unit_cube(1), CellType::Hexahedron, 1);
+  const Mesh geometry = box_mesh(BoxSpec{{0, 0, 0}, {0.3, 1, 1}, {1, 2, 2}}, CellType::Tetrahedron, 1);
+  const DofMap dofs(cell.num_nodes(), {});
+  const auto mat = make_material("linear", LameParameters::from_young_poisson(1.0, 0.3));
+  const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(cell.nodes.data(), 3 * cell.num_nodes());
+  auto stiffness = [&](const CellQuadrature& fc) {
+    Assembler a(cell, dofs);
+    a.set_element_quadrature(fc.rules);
+    SparseMatrix K = a.new_matrix();
+    Eigen::VectorXd g;
+    a.hessian(*mat, x, g, K, false);
+    return Eigen::MatrixXd(K);
+  };
+  CellQuadrature unfolded = finite_cell_quadrature(cell, mesh_tetrahedra(geometry));
+  CellQuadrature folded = unfolded;
+  const int degree = unfolded.stiffness_degree;
+  ASSERT_EQ(degree, 4);
+  stabilise_finite_cells(cell, unfolded);
+  FiniteCellStabilisation options;
+  options.simplify_degree = degree;
+  const StabilisedCells s = stabilise_finite_cells(cell, folded, options);
+  ASSERT_EQ(s.folded, 1);
+  const int bound = (degree + 1) * (degree + 2) * (degree + 3) / 6;  // C(m+3, 3) = 35
+  EXPECT_LE(folded.rules[0]->rule.size(), bound);
+  EXPECT_GT(unfolded.rules[0]->rule.size(), bound);
+  const Eigen::MatrixXd K0 = stiffness(unfolded), K1 = stiffness(folded);
+  EXPECT_LE((K1 - K0).cwiseAbs().maxCoeff(), 1e-9 * K0.cwiseAbs().maxCoeff());
+  // The folded weights still hold the stabilised volume: 0.3 of the cell plus 1e-6 of it.
+  EXPECT_NEAR(folded.rules[0]->rule.weights.sum(), 8.0 * (0.3 + 1e-6), 1e-12);
+}
+
 // Static problems stabilise the stiffness only: their mass rules carry the loads,
 // which must integrate over the body alone (the cut rule's own object is kept).
 TEST(FiniteCell, StabilisationCanLeaveTheMassRulesAlone) {

@@ -84,6 +84,40 @@ TEST(Krylov, PreconditioningReducesIterations) {
   EXPECT_LT(ic, jacobi);
 }
 
+// A fixed budget (set_fixed_iterations, the thesis §5.3.2's "3 iterations CG")
+// runs exactly k iterations and returns the iterate without converging; k = 0
+// restores convergence to the tolerance. Each CG iterate minimises the energy
+// norm of the error over a Krylov space that grows with k, so 12 iterations
+// leave a smaller energy error than 3 (the residual itself need not shrink:
+// measured 0.51 after 3, 0.77 after 12 on this bar).
+TEST(Krylov, FixedIterationsStopAfterExactlyKAndAcceptTheIterate) {
+  const SparseMatrix K = stiffness();
+  const Eigen::VectorXd b = rhs(K.rows());
+  auto direct = make_linear_solver("cholmod");
+  ASSERT_TRUE(direct->factorize(K));
+  Eigen::VectorXd x_ref;
+  direct->solve(b, x_ref);
+  auto energy_error = [&](const Eigen::VectorXd& x) { return (x - x_ref).dot(K * (x - x_ref)); };
+  KrylovSolver s("cg", "jacobi");
+  ASSERT_TRUE(s.set_fixed_iterations(3));
+  ASSERT_TRUE(s.factorize(K));
+  Eigen::VectorXd x;
+  s.solve(b, x);  // does not throw although it has not converged
+  EXPECT_EQ(s.last_iterations(), 3);
+  EXPECT_FALSE(s.last_result().converged);
+  const double e3 = energy_error(x);
+  s.set_fixed_iterations(12);
+  s.solve(b, x);
+  EXPECT_EQ(s.last_iterations(), 12);
+  EXPECT_LT(energy_error(x), e3);
+  s.set_fixed_iterations(0);
+  s.solve(b, x);
+  EXPECT_TRUE(s.last_result().converged);
+  EXPECT_GT(s.last_iterations(), 12);
+  // A direct solver has no iterations to fix.
+  EXPECT_FALSE(make_linear_solver("cholmod")->set_fixed_iterations(3));
+}
+
 // K - sigma I with sigma inside the spectrum: symmetric indefinite.
 TEST(Krylov, IndefiniteMatrixBreaksCgButNotCrMinresGmres) {
   SparseMatrix A = stiffness();

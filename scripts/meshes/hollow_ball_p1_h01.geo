@@ -1,0 +1,5 @@
+// The hollow ball (hollow_ball_shape.inc) at mesh size 0.1 in linear
+// tetrahedra (Tet4 runs of scripts/studies/hollow-ball.json).
+// make-meshes order: 1
+Include "hollow_ball_shape.inc";
+Mesh.CharacteristicLengthMax = 0.1;
