@@ -17,6 +17,9 @@
 //   "mass": "lumped" | "consistent", "lumping": "row-sum" | "hrz",          (optional)
 //   "solver": {"linear": "auto", "krylov_iterations": 12, "newton_rtol": 1e-8, "newton_max_iterations": 50,
 //              "eisenstat_walker": false},                                (optional)
+//              (krylov_iterations: every linear solve runs exactly that many
+//               iterations of a Krylov solver and takes the iterate, converged
+//               or not - a fixed budget per solve; time-stepping scenes only)
 //   "gravity": [0, 0, -9.81],                                             (optional)
 //   "damping": {"alpha": 0, "beta": 0},                                   (optional)
 //   "boundary": [{"nodes": "xmin", "motion": "fixed"},

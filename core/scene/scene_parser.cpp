@@ -256,11 +256,17 @@ Scene parse_validated(const json& j, const std::string& origin) {
       d.linear_solver = sv.at("linear").choice(names);
     }
     if (sv.has("krylov_iterations")) {
-      if (s.is_static) sv.at("krylov_iterations").fail("is for time-stepping scenes (a static solve runs to its tolerance)");
+      if (s.is_static)
+        sv.at("krylov_iterations").fail("is for time-stepping scenes (a static solve runs to its tolerance)");
       d.krylov_iterations = sv.at("krylov_iterations").integer(1, 100000);
       const std::string& m = d.linear_solver;
-      const bool krylov = m.starts_with("cg+") || m.starts_with("cr+") || m.starts_with("minres+") || m.starts_with("gmres+");
-      if (!krylov) sv.at("krylov_iterations").fail(fmt::format("needs solver.linear = a Krylov method (cg+, cr+, minres+, gmres+ with a preconditioner), not \"{}\"", m));
+      const bool krylov =
+          m.starts_with("cg+") || m.starts_with("cr+") || m.starts_with("minres+") || m.starts_with("gmres+");
+      if (!krylov)
+        sv.at("krylov_iterations")
+            .fail(fmt::format("needs solver.linear = a Krylov method (cg+, cr+, minres+, gmres+ with a "
+                              "preconditioner), not \"{}\"",
+                              m));
     }
     if (sv.has("newton_rtol")) d.newton.rtol = sv.at("newton_rtol").number(0.0, 1.0, true, true);
     if (sv.has("newton_max_iterations")) d.newton.max_iterations = sv.at("newton_max_iterations").integer(1, 10000);
