@@ -39,6 +39,8 @@ def load(reports, studies_dir="studies"):
     studies = {}
     root = os.path.join(reports, studies_dir)
     for name in sorted(os.listdir(root)):
+        if studies_dir != "studies" and not os.path.exists(os.path.join(root, name, "study.json")):
+            continue  # a full-size study that did not finish: its rows are listed as skipped
         with open(os.path.join(root, name, "study.json")) as f:
             studies[name] = json.load(f)
 
