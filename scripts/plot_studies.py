@@ -4,7 +4,9 @@ by `hofem study`): the study's metric (max over its frames) against the median
 time per step, one marker per family, a family's resolutions joined coarse to
 fine; the thresholds as dashed lines, the reference's own error (Richardson) as a
 shaded band, each run's faceting floor (t = 0) as a small open marker below it.
-Writes reports/studies/NAME/work_precision.png. Run with Debian's interpreter
+Where runs solve iteratively, a second panel sets the same error against the
+linear iterations per step (the thesis' Figs. 13-14: error against iterations
+and against time). Writes reports/studies/NAME/work_precision.png. Run with Debian's interpreter
 (python3-matplotlib)."""
 import json
 import os
@@ -28,14 +30,23 @@ def plot(study, path):
         if r["family"] not in families:
             families.append(r["family"])
     # Floors at round-off (a box's flat faces are exact at t = 0) are not drawn.
-    smallest = min(r["metric"] for r in runs)
-    visible = lambda r: metric.startswith("surface") and r["floor"]["surface_rms"] > 1e-3 * smallest
-    fig, ax = plt.subplots(figsize=(7.0, 5.0))
+    # (1e-10 of the largest error: a box's floor is ~1e-17 m, where a run converged to round-off also sits).
+    smallest, largest = min(r["metric"] for r in runs), max(r["metric"] for r in runs)
+    visible = lambda r: metric.startswith("surface") and r["floor"]["surface_rms"] > max(1e-3 * smallest, 1e-10 * largest)
+    iterative = [r for r in runs if r["linear_iterations"] > 0]
+    fig, axes = plt.subplots(1, 2 if iterative else 1, figsize=(13.0 if iterative else 7.0, 5.0), squeeze=False)
+    ax = axes[0][0]
+    per_step = lambda r: r["linear_iterations"] / max(r["steps"], 1)
     for i, family in enumerate(families):
-        rows = sorted((r for r in runs if r["family"] == family), key=lambda r: r["unknowns"])
+        rows = sorted((r for r in runs if r["family"] == family), key=lambda r: (r["unknowns"], r["linear_iterations"]))
+        colour, marker = COLOURS[i % len(COLOURS)], MARKERS[i % len(MARKERS)]
+        if iterative:
+            its = [r for r in rows if r["linear_iterations"] > 0]
+            if its:
+                axes[0][1].plot([per_step(r) for r in its], [r["metric"] for r in its], marker=marker, color=colour,
+                                label=family, markersize=7)
         x = [r["time_per_step_median"] for r in rows]
         y = [r["metric"] for r in rows]
-        colour, marker = COLOURS[i % len(COLOURS)], MARKERS[i % len(MARKERS)]
         ax.plot(x, y, marker=marker, color=colour, label=family, markersize=7)
         floors = [(r["time_per_step_median"], r["floor"]["surface_rms"]) for r in rows if visible(r)]
         if floors:
@@ -66,6 +77,18 @@ def plot(study, path):
     ax.set_ylim(min(ys) / 3, max(ys) * 2)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="lower left")
+    if iterative:
+        it = axes[0][1]
+        for t in study["thresholds"]:
+            it.axhline(t, color="0.4", linestyle="--", linewidth=0.8)
+        it.set_xscale("log")
+        it.set_yscale("log")
+        it.set_ylim(*ax.get_ylim())
+        it.set_xlabel("linear (Krylov) iterations per step [-]")
+        it.set_ylabel(ax.get_ylabel())
+        it.set_title(f'{study["name"]}: error against iterations per step\n(runs that solve iteratively)', fontsize=10)
+        it.grid(True, which="both", alpha=0.3)
+        it.legend(fontsize=8, loc="lower left")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)

@@ -192,6 +192,46 @@ TEST(Scenes, ExplicitRunWritesFramesAndBuildsNoHessian) {
   std::filesystem::remove_all(dir);
 }
 
+// A fixed Krylov budget (solver.krylov_iterations): the semi-implicit step
+// solves once per step, so the run does exactly steps x k iterations; min det
+// F is recorded per step and over the run (a falling cube stays near 1: no
+// element inverts).
+TEST(Scenes, FixedKrylovBudgetAndVolumeRatioAreRecorded) {
+  Scene s = parse_scene(R"({
+    "name": "budget",
+    "mesh": {"box": {"min": [0, 0, 0.5], "max": [1, 1, 1.5], "cells": [2, 2, 2]}},
+    "material": {"model": "neohookean", "young": 1e4, "poisson": 0.3, "density": 100},
+    "integrator": "semi-implicit", "dt": 0.01, "duration": 0.1,
+    "gravity": [0, 0, -9.81], "solver": {"linear": "cr+jacobi", "krylov_iterations": 3}})",
+                        "budget.json");
+  SceneRunOptions o;
+  o.write_frames = false;
+  const SceneRunResult r = run_scene(s, "", o);
+  ASSERT_TRUE(r.ok) << r.message;
+  const auto& st = r.stats;
+  ASSERT_EQ(st["steps"].size(), 10u);
+  EXPECT_EQ(st["built"]["linear_iterations"].get<int>(), 10 * 3);
+  for (const auto& row : st["steps"]) {
+    EXPECT_EQ(row["linear_iterations"].get<int>(), 3);
+    EXPECT_GT(row["min_det_F"].get<double>(), 0.9);
+    EXPECT_EQ(row["inverted_elements"].get<int>(), 0);
+  }
+  EXPECT_EQ(st["deformation"]["max_inverted_elements"].get<int>(), 0);
+  EXPECT_GT(st["deformation"]["min_det_F"].get<double>(), 0.9);
+  // A static scene has no steps to budget.
+  try {
+    parse_scene(R"({"name": "s", "mesh": {"box": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}},
+      "material": {"model": "neohookean", "young": 1e4, "poisson": 0.3}, "integrator": "static",
+      "solver": {"linear": "cg+jacobi", "krylov_iterations": 3}})",
+                "static.json");
+    ADD_FAILURE() << "a static scene with krylov_iterations was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("static.json: solver.krylov_iterations is for time-stepping scenes"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // Implicit without a floor: one symbolic analysis for the whole run, no floor
 // work; a static scene builds no mass at all.
 TEST(Scenes, ImplicitAndStaticRunsBuildOnlyWhatTheyNeed) {
