@@ -10,8 +10,8 @@
 //                  and row indices (8 + 8 bytes per nonzero, 64-bit indices),
 //                  column starts, and every vector operand read or written,
 //   floor_seconds  bytes / floor: the time at the triad's bandwidth,
-//   floor_ratio    measured time / floor_seconds (1 = at the floor; the target
-//                  of issue 4 is <= 1.5 for one CG iteration on the order-2 matrix),
+//   floor_ratio    measured time / floor_seconds (1 = at the floor; the
+//                  solver target is <= 1.5 for one CG iteration on the order-2 matrix),
 //   bandwidth_ratio   achieved bytes/s over the floor (= 1 / floor_ratio),
 //   floor_ratio_now   the same against a triad measured right after the kernel
 //                  (triad_now_GBps): on a loaded machine the two floors differ.

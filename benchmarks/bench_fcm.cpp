@@ -1,4 +1,4 @@
-// Finite cell method (second seed §4.4-4.5, §6.5) costs:
+// Finite cell method (Longva et al. 2020 §4.4-4.5, §6.5) costs:
 //  - BM_FcmQuadrature: generation (clipping + mapping, §4.5) and LP
 //    simplification (§4.4) of the stiffness rules for an embedded geometry:
 //    the hollow ball of scripts/meshes (scripts/make-meshes; skipped with the

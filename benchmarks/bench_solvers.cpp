@@ -1,4 +1,4 @@
-// The linear-solver sweep of issue 4: every name of linear_solver_names()
+// The linear-solver sweep: every name of linear_solver_names()
 // (direct solvers, hypre's PCG, and <cg|cr|minres|gmres>+<every preconditioner>)
 // on
 //   - "mms-linear": the linear manufactured solution on the unit cube (one solve

@@ -28,7 +28,7 @@ namespace hofem {
 /// Quadrature degree for the stiffness terms of an element when none is given:
 /// linear elasticity on affine (straight-sided) tetrahedra integrates exactly
 /// with 2(p-1) (product of two gradients of degree p-1); nonlinear materials get
-/// 2p (the choice of the second seed for Tet10 is 3 after its LP simplification;
+/// 2p (the choice of Longva et al. 2020 for Tet10 is 3 after its LP simplification;
 /// we keep a full rule). Hex: 2p (p + 1 Gauss points per direction).
 int default_quadrature_degree(CellType cell, int order, bool linear_material);
 

@@ -1,6 +1,5 @@
 #pragma once
-// A mesh distributed over MPI ranks, and the global numbering of its free DOFs
-// (issue 7).
+// A mesh distributed over MPI ranks, and the global numbering of its free DOFs.
 //
 // DistributedMesh: each rank keeps only its piece (mesh/local_mesh.hpp: the
 // elements of its part, recursive coordinate bisection, and the nodes they

@@ -23,7 +23,7 @@ struct BasisTabulation {
 BasisTabulation tabulate(const ReferenceBasis& basis, const QuadratureRule& rule);
 
 /// A quadrature rule of one element with the basis tabulated on it: the finite
-/// cell method gives every cut cell its own rule (second seed §4.4-4.5).
+/// cell method gives every cut cell its own rule (Longva et al. 2020 §4.4-4.5).
 struct ElementQuadrature {
   QuadratureRule rule;
   BasisTabulation tabulation;

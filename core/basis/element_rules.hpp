@@ -1,5 +1,5 @@
 #pragma once
-// Per-element quadrature for cut cells (finite cell method, second seed §4.5):
+// Per-element quadrature for cut cells (finite cell method, Longva et al. 2020 §4.5):
 // each element may integrate with its own points instead of the standard rule.
 // Two families, because stiffness and mass need different strengths (§6).
 //

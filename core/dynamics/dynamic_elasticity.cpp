@@ -41,7 +41,7 @@ std::vector<int> constrained_nodes(const std::vector<PrescribedMotion>& motions,
 
 bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
 
-// Distributed runs (issue 7) keep only this rank's piece of the mesh.
+// Distributed runs keep only this rank's piece of the mesh.
 std::unique_ptr<DistributedMesh> piece_of(const Mesh& mesh, const DynamicsOptions& o) {
   if (!o.distributed) return nullptr;
   if (o.integrator != Integrator::ImplicitEuler || o.rayleigh_beta > 0.0)

@@ -61,7 +61,7 @@ struct DynamicsOptions {
   /// > 0: every linear solve runs exactly this many Krylov iterations and takes
   /// the iterate (LinearSolver::set_fixed_iterations); needs a Krylov solver.
   int krylov_iterations = 0;
-  /// Distributed over the ranks of MPI_COMM_WORLD (issue 7; implicit Euler
+  /// Distributed over the ranks of MPI_COMM_WORLD (implicit Euler
   /// without stiffness damping so far): each rank keeps its piece of the mesh
   /// (recursive coordinate bisection; its elements with their owned and ghost
   /// nodes) and integrates every element term (elastic, mass, gravity) of its

@@ -48,7 +48,7 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
   }
   int size() const override { return s_.dofs_.num_free(); }
 
-  // Distributed (issue 7): every term below is this rank's share (its elements,
+  // Distributed: every term below is this rank's share (its elements,
   // its owned nodes' floor terms), so one sum over ranks gives the energy and one
   // halo sum the gradient.
   double energy(const Eigen::VectorXd& y) override {
@@ -98,7 +98,7 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
   // Representative force: gravity, the inertial force M v_n / h, the first
   // residual, or the elastic force of a unit strain over the body ((2 mu +
   // lambda) L^2, so that rtol reads as a strain), whichever is largest (the
-  // second seed stops at 1e-5 M a_rep with gravity). The elastic term keeps the
+  // Longva et al. 2020 §6 stop at 1e-5 M a_rep with gravity). The elastic term keeps the
   // tolerance above the rounding of internal forces computed from positions
   // (~eps (2 mu + lambda) |x| h_e per node) when the body comes to rest.
   double force_scale(const Eigen::VectorXd& g0) const override {

@@ -1,5 +1,5 @@
 #pragma once
-// Embedded geometry carried by the background solution (second seed §3, §5.3):
+// Embedded geometry carried by the background solution (Longva et al. 2020 §3, §5.3):
 // each embedded vertex sits in a background cell at reference coordinates xi and
 // moves with u(X) = sum_i N_i(xi) u_i. A vertex whose cell was dropped (volume
 // fraction below the threshold) or is otherwise inactive is extrapolated from

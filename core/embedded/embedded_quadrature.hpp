@@ -1,5 +1,5 @@
 #pragma once
-// Per-cell quadrature for embedded (finite cell) simulation, second seed §4.5:
+// Per-cell quadrature for embedded (finite cell) simulation, Longva et al. 2020 §4.5:
 // the embedded geometry is a set of tetrahedra; the part of it inside a
 // background cell is clipped into tetrahedra (tet_clipping.hpp), and a tet rule
 // of degree m is mapped onto each piece. The result integrates polynomials of

@@ -1,7 +1,7 @@
 #pragma once
 // Quadrature on an embedded surface: Neumann data (tractions) live on the
 // embedded boundary, which cuts the background cells just as the embedded volume
-// does (second seed §3; the finite cell literature integrates such data over the
+// does (Longva et al. 2020 §3; the finite cell literature integrates such data over the
 // boundary pieces inside each cut cell).
 //
 // The load of a traction t is b_i = ∫_Γ N_i t dA, N_i the background basis

@@ -1,5 +1,5 @@
 #pragma once
-// Finite-cell quadrature (second seed §4.4-4.5, §5.3): for every cell of a
+// Finite-cell quadrature (Longva et al. 2020 §4.4-4.5, §5.3): for every cell of a
 // background mesh, rules over the part of the embedded geometry inside it, in
 // the cell's reference coordinates, ready for the Assembler (ElementRules, basis/element_rules.hpp).
 //
@@ -145,7 +145,7 @@ struct StabilisedCells {
 StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& cells,
                                        const FiniteCellStabilisation& options = {});
 
-/// The cells the Additive-Schwarz preconditioner treats with blocks (second seed
+/// The cells the Additive-Schwarz preconditioner treats with blocks (Longva et al. 2020
 /// §5.2): cut cells (0 < fraction < 1, not dropped) with a volume fraction below
 /// `threshold` (the seed: 0.5-0.7 work well; 0.5 in its §6.5). Ascending.
 std::vector<int> schwarz_block_elements(const CellQuadrature& cells, double threshold = 0.5);

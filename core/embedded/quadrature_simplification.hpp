@@ -1,5 +1,5 @@
 #pragma once
-// Simplification of a positive quadrature rule (second seed §4.4): from N points
+// Simplification of a positive quadrature rule (Longva et al. 2020 §4.4): from N points
 // with weights w0 >= 0, keep at most M = C(m+3, 3) of the same points with new
 // positive weights that integrate every polynomial of total degree <= m exactly
 // as the input rule does (up to rounding).

@@ -1,5 +1,5 @@
 #pragma once
-// Convex clipping for embedded quadrature (second seed §4.5): the part of an
+// Convex clipping for embedded quadrature (Longva et al. 2020 §4.5): the part of an
 // embedded tetrahedron inside a background cell, as a set of tetrahedra.
 //
 // A background cell with planar faces is the intersection of half-spaces (6 for

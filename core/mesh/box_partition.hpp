@@ -1,5 +1,5 @@
 #pragma once
-// One rank's piece of a structured box mesh, generated directly (issue 7): no
+// One rank's piece of a structured box mesh, generated directly: no
 // rank ever builds the whole mesh, so the input costs memory in proportion to
 // the piece, not to the problem (the sizing model's "replicated input" R = 0).
 //

@@ -1,5 +1,5 @@
 #pragma once
-// One rank's piece of a partitioned mesh (issue 7): the elements of its part and
+// One rank's piece of a partitioned mesh: the elements of its part and
 // the nodes they touch, renumbered locally, with each node's global id and
 // owner. A distributed run builds its DOF map, sparsity pattern, element data
 // and vectors on this piece only, so that per-rank memory falls as N / ranks

@@ -1,5 +1,5 @@
 #pragma once
-// Element partitions for distributed assembly (issue 7): every MPI rank
+// Element partitions for distributed assembly: every MPI rank
 // assembles only the elements of its part.
 //
 // Recursive coordinate bisection (RCB) of the element centroids: the longest

@@ -1,6 +1,6 @@
 #pragma once
-// The few collectives a distributed problem needs on top of its serial code
-// (issue 7): each rank integrates its own elements, so energies and force
+// The few collectives a distributed problem needs on top of its serial code:
+// each rank integrates its own elements, so energies and force
 // vectors are sums over ranks, and a failure on one rank (an inverted element
 // in its part) must stop every rank at the same point, not leave the others
 // waiting in the next collective.

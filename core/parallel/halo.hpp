@@ -1,6 +1,6 @@
 #pragma once
 // Owned and ghost entries of a distributed vector, and the two exchanges a
-// distributed finite element code needs (issue 7):
+// distributed finite element code needs:
 //  - sum(): every rank integrated its own elements, so an entry on a part
 //    boundary holds only a partial sum on each rank that touches it; ghosts send
 //    their partial values to the owner, which adds them, and the owner's total

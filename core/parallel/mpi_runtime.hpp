@@ -2,7 +2,7 @@
 // MPI and hypre start-up. Debian's hypre is an MPI build: MPI_Init must precede
 // HYPRE_Init, after which a program runs serially without mpirun (one rank).
 //
-// Programs that know they use MPI (the CLI, issue 7's distributed runs) create an
+// Programs that know they use MPI (the CLI, the distributed runs) create an
 // MpiSession in main(); library code that needs hypre calls ensure_hypre(), which
 // starts MPI and hypre on first use if nobody did and shuts both down at exit, so
 // tests and benchmarks need no set-up of their own.

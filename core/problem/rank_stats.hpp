@@ -1,5 +1,5 @@
 #pragma once
-// What one rank of a distributed run holds, sends and spends (issue 7): the
+// What one rank of a distributed run holds, sends and spends: the
 // per-rank figures behind the scaling report and the sizing model
 // (scripts/mpi_model.py). Gathered so that rank 0 can write them all.
 #include "assembly/assembler.hpp"

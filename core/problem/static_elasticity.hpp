@@ -48,7 +48,7 @@ struct StaticOptions {
   /// Extra external load at full load factor, all 3 * num_nodes DOFs (e.g. surface
   /// tractions integrated by the caller); empty = none.
   Eigen::VectorXd external_load;
-  /// Distributed over the ranks of MPI_COMM_WORLD (issue 7): the elements are
+  /// Distributed over the ranks of MPI_COMM_WORLD: the elements are
   /// partitioned (recursive coordinate bisection) and each rank keeps only its
   /// piece of the mesh (its elements, their owned and ghost nodes): DOF map,
   /// pattern, element data and vectors are the piece's. Energies are summed over
@@ -89,7 +89,7 @@ class StaticElasticity final : public NonlinearProblem {
   StaticElasticity(const Mesh& mesh, const Material& material, std::vector<DirichletCondition> dirichlet,
                    VectorField body_force, StaticOptions options = {});
 
-  /// Distributed (issue 7) on a piece each rank made itself (e.g. box_piece via
+  /// Distributed on a piece each rank made itself (e.g. box_piece via
   /// distribute_piece: no rank holds the whole mesh). Dirichlet node ids are the
   /// piece's; options.distributed is implied; element rules and external loads
   /// are not taken (they are given on a whole mesh). Collective.

@@ -37,7 +37,7 @@
 //               with optional "drop_fraction": 1e-4, "stabilisation": 1e-6, "simplify": true
 // }
 //
-// Embedded scenes (finite cell method, second seed §3.2, §5.3): "embedded" gives
+// Embedded scenes (finite cell method, Longva et al. 2020 §3.2, §5.3): "embedded" gives
 // the body's geometry as tetrahedra - the generators' Tet4 meshes, or a .msh of
 // tetrahedra of any order of which only the vertex tets are used - and "mesh" is
 // then the background that carries the displacement: a box grid (hex or tet, any

@@ -1,5 +1,5 @@
 #pragma once
-// The embedded (finite cell) part of a scene run, second seed §3.2, §5.3: built
+// The embedded (finite cell) part of a scene run, Longva et al. 2020 §3.2, §5.3: built
 // once before stepping, then asked for the surface displacement each frame.
 //   - the finite-cell rules of the background over the embedded tetrahedra
 //     (cut cells' stiffness rules simplified unless the scene says not to),
@@ -31,7 +31,7 @@ class SceneEmbedding {
   SceneEmbedding(const Scene& scene, const Mesh& background);
 
   ElementRules element_rules() const { return cells_.element_rules(); }
-  /// Cut cells under a volume fraction of 0.5: the blocks of the "schwarz" preconditioner (second seed §5.2).
+  /// Cut cells under a volume fraction of 0.5: the blocks of the "schwarz" preconditioner (Longva et al. 2020 §5.2).
   std::vector<int> preconditioner_blocks() const { return schwarz_block_elements(cells_); }
   /// Per background element: volume of (geometry ∩ cell) / cell volume.
   const std::vector<double>& volume_fraction() const { return cells_.volume_fraction; }

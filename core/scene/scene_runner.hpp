@@ -41,7 +41,7 @@ struct SceneState {
 struct SceneRunOptions {
   bool progress = false;  ///< a progress bar on stderr
   bool write_frames = true;
-  /// Over the MPI ranks (issue 7; static scenes and implicit Euler): every rank
+  /// Over the MPI ranks (static scenes and implicit Euler): every rank
   /// runs the scene on its part of the elements, rank 0 writes the frames and
   /// stats.json (the state is replicated, so they are the whole body's).
   bool distributed = false;

@@ -3,7 +3,7 @@
 // elasticity: systems AMG with three functions (x, y, z) per node, one V-cycle
 // per application. Two levels:
 //   - BoomerAmg works on hypre objects only (a ParCSR matrix, ParVectors), so the
-//     MPI-distributed assembly (issue 7) can hand in its own ParCSR matrix; hypre's
+//     MPI-distributed assembly can hand in its own ParCSR matrix; hypre's
 //     PCG (solver/hypre_pcg.hpp) uses it as its preconditioner too.
 //   - make_boomeramg_preconditioner() wraps it as a Preconditioner on our serial
 //     SparseMatrix (converted by solver/hypre_matrix.hpp).

@@ -1,6 +1,6 @@
 #pragma once
 // A linear system assembled by several MPI ranks straight into hypre's IJ /
-// ParCSR objects (issue 7), solved by hypre's PCG or GMRES with BoomerAMG.
+// ParCSR objects, solved by hypre's PCG or GMRES with BoomerAMG.
 //
 // The boundary with assembly is the serial one, on each rank's piece of the
 // mesh: the rank assembles its own elements with the ordinary Assembler into a

@@ -2,7 +2,7 @@
 // Our matrices and vectors as hypre objects: the IJ interface builds a ParCSR
 // matrix (hypre's distributed CSR, the input of BoomerAMG and hypre's Krylov
 // solvers) from a SparseMatrix. Here every row is owned by the one calling rank;
-// the MPI-distributed assembly (issue 7) will build its own HypreMatrix from
+// the MPI-distributed assembly will build its own HypreMatrix from
 // locally owned rows, and the solvers only ever see parcsr().
 //
 // hypre is an MPI build: ensure_hypre() (parallel/mpi_runtime.hpp) runs before the

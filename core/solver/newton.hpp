@@ -3,7 +3,7 @@
 // K d = -g, then backtracking (Armijo) line search on the energy.
 //
 // Stopping rule: ||g|| <= rtol * force_scale, where force_scale is a representative
-// force of the problem (the second seed stops when the residual falls below 1e-5
+// force of the problem (Longva et al. 2020 §6 stop when the residual falls below 1e-5
 // of a representative force, M a_rep with gravity; for a static problem we use
 // the external load and the first residual, see NonlinearProblem::force_scale).
 // Indefinite Hessians: if the factorisation reports "not positive definite" the
@@ -34,7 +34,7 @@ class NonlinearProblem {
   virtual void hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K, bool project) = 0;
   /// Representative force magnitude for the relative stopping rule (> 0).
   virtual double force_scale(const Eigen::VectorXd& g0) const = 0;
-  /// Inner product of two vectors of unknowns. A distributed problem (issue 7)
+  /// Inner product of two vectors of unknowns. A distributed problem
   /// holds each rank's unknowns plus ghost copies of its neighbours' and sums the
   /// owned entries over the ranks, so that every rank takes the same decisions.
   virtual double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const { return a.dot(b); }

@@ -1,5 +1,5 @@
 #pragma once
-// Manufactured-solution convergence studies (issue 3): error tables and observed
+// Manufactured-solution convergence studies: error tables and observed
 // rates on the finest pair of each sequence, asserted against the theoretical
 // rates L2 >= p + 1 - 0.15 and H1 >= p - 0.15.
 #include "manufactured_solution.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Dynamics (issue 5, thesis §2.3):
+// Dynamics (thesis §2.3):
 //  - dynamics.order:    convergence order in dt of every integrator against the
 //                       exact modal solution of a linear-elastic bar (lumped mass);
 //  - dynamics.momentum: linear momentum of a free spinning Neo-Hookean body kept to

@@ -1,5 +1,5 @@
 #pragma once
-// Embedded quadrature, second seed §4.6 / Fig. 4: a rotated, translated cuboid
+// Embedded quadrature, Longva et al. 2020 §4.6 / Fig. 4: a rotated, translated cuboid
 // (1.1 x 0.8 x 0.6, 48 tetrahedra) inside the reference hex [-1, 1]^3; the clipped
 // rule of strength m over (cuboid ∩ cell) (§4.5) and its LP simplification (§4.4)
 // integrate every monomial of degree <= m of the cuboid's local frame, against

@@ -1,5 +1,5 @@
 #pragma once
-// Conditioning of finite-cell systems (second seed §5, Fig. 5), group "embedded.fig5".
+// Conditioning of finite-cell systems (Longva et al. 2020 §5, Fig. 5), group "embedded.fig5".
 //
 // A 4x4x4 grid of tetrahedra (Tet4 or Tet10) on [0, 4/3]^3 holds the embedded box
 // [0, 1 + eps/3]^3: the last layer of cells in each direction is cut to a width

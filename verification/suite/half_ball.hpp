@@ -1,5 +1,5 @@
 #pragma once
-// The embedded body of the finite cell convergence and load checks (second seed
+// The embedded body of the finite cell convergence and load checks (Longva et al. 2020
 // Fig. 10 uses a hemisphere-like body in hex grids): a half ball of radius 1/2
 // about (1/2, 1/2, 0) as a tet mesh, its flat face in the grid plane z = 0.
 #include "mesh/mesh.hpp"

@@ -158,7 +158,7 @@ double mms_algebraic_tolerance(double h, int order) {
 }
 
 MmsErrors mms_errors(const Mesh& mesh, const ManufacturedDisplacement& ustar, const Eigen::VectorXd& u) {
-  // Errors with a rule of degree >= p + 3 (issue 3), over the isoparametric map.
+  // Errors with a rule of degree >= p + 3, over the isoparametric map.
   MmsErrors err;
   err.degree = std::max(mesh.order + 3, 2 * mesh.order);
   const QuadratureRule& rule = quadrature_rule(mesh.cell, err.degree);

@@ -1,5 +1,5 @@
 #pragma once
-// Manufactured solutions on the unit cube [0,1]^3 (issue 3): a displacement u*
+// Manufactured solutions on the unit cube [0,1]^3: a displacement u*
 // is chosen, the body force that makes it an equilibrium is computed from the
 // material law, u = u* is prescribed on the whole boundary, and the discrete
 // solution's L2 and H1-seminorm errors are measured.
@@ -89,7 +89,7 @@ struct MmsProblem {
   std::unique_ptr<Material> material;
   ManufacturedDisplacement ustar;
   Mesh mesh;  ///< empty when `piece` is set
-  /// Distributed, unperturbed cases without VTU output (issue 7): this rank's
+  /// Distributed, unperturbed cases without VTU output: this rank's
   /// piece of the cube, generated directly (box_piece), so no rank builds the
   /// whole mesh; `dirichlet` then names the piece's nodes.
   std::unique_ptr<DistributedMesh> piece;

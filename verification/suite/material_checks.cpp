@@ -178,7 +178,7 @@ void add_lame_checks(Report& report) {
       {1.0, 0.49, 0.33557046979865773, 16.44295302013423, "mu = 1/2.98 = 50/149, lambda = 0.49/0.0298 = 2450/149"},
       {1.0, 0.0, 0.5, 0.0, "mu = E/2, lambda = 0"},
       {1.0, -0.5, 1.0, -0.5, "mu = 1/(2 * 0.5) = 1, lambda = -0.5/(0.5 * 2) = -1/2"},
-      // Errata check for the second seed (issue 6): its published code converted
+      // Errata check for Longva et al. 2020: its published code converted
       // (E, nu) to Lame parameters wrongly; every finite-cell experiment here uses
       // this tested conversion, so the seed's own materials are checked too:
       // Fig. 5 and the cylinder (E = 3e6, nu = 0.4), the armadillo (5e5, 0.4).

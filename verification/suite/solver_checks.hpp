@@ -1,5 +1,5 @@
 #pragma once
-// Linear solvers and preconditioners (issue 4, thesis §3.1-3.2, §5.3.2):
+// Linear solvers and preconditioners (thesis §3.1-3.2, §5.3.2):
 //  - solvers.spd:          every linear solver and Krylov method x preconditioner
 //                          on SPD elasticity systems (tet orders 1-3, Hex8, Hex20)
 //                          reaches the requested residual and agrees with CHOLMOD;

@@ -1,4 +1,4 @@
-// Element-block Additive-Schwarz preconditioner (second seed eq. 13-14): exact
+// Element-block Additive-Schwarz preconditioner (Longva et al. 2020 eq. 13-14): exact
 // inverse for a single block, the reflected pseudo-inverse of eq. 14 on an
 // indefinite block, SPD on stiffness matrices, convergence of CG and MINRES to
 // CHOLMOD's solution, Jacobi on uncovered DOFs, reproducibility, error paths.

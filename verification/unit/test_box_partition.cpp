@@ -1,4 +1,4 @@
-// Pieces of a box mesh generated per part (issue 7: no rank builds the whole
+// Pieces of a box mesh generated per part (no rank builds the whole
 // mesh). Checked against the whole mesh from box_mesh(): every element once,
 // with the same nodes in the same order, every node owned once by the lowest
 // part that has it, and the box's node sets.

@@ -1,4 +1,4 @@
-// Dynamics (issue 5): masses, the convergence order in dt of every integrator
+// Dynamics: masses, the convergence order in dt of every integrator
 // against the exact modal solution of a linear-elastic bar, energy behaviour,
 // momentum conservation, and instability detection of the explicit schemes.
 #include "assembly/assembler.hpp"

@@ -1,4 +1,4 @@
-// Embedded quadrature, second seed §4.5: clipping tetrahedra by half-spaces,
+// Embedded quadrature, Longva et al. 2020 §4.5: clipping tetrahedra by half-spaces,
 // per-cell rules over (embedded geometry ∩ cell), and the bucket grid that finds
 // each cell's candidate tetrahedra.
 #include "embedded/embedded_quadrature.hpp"
@@ -63,7 +63,7 @@ TEST(TetClipping, VolumesOfEveryCase) {
   EXPECT_NEAR(volume(clip_tetrahedron(t, box)), 0.125 - 0.125 / 6.0, 16 * kEps);
 }
 
-// A rotated, translated cuboid (the second seed's Fig. 4 geometry) meshed by
+// A rotated, translated cuboid (the Fig. 4 geometry of Longva et al. 2020) meshed by
 // tetrahedra and cut by a 3x3x3 background grid: summed over the cells, the
 // per-cell rules of degree m integrate every monomial of degree <= m over the
 // whole cuboid, against a tensor Gauss rule mapped affinely onto the cuboid

@@ -1,4 +1,4 @@
-// Finite-cell assembly (second seed §4.5 / §5): per-element rules over
+// Finite-cell assembly (Longva et al. 2020 §4.5 / §5): per-element rules over
 // (embedded geometry ∩ cell) in the assembler.
 #include "assembly/assembler.hpp"
 #include "embedded/embedded_quadrature.hpp"

@@ -1,4 +1,4 @@
-// Element partitions and the distributed row numbering (issue 7's groundwork).
+// Element partitions and the distributed row numbering.
 #include "mesh/local_mesh.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/mesh_partition.hpp"

@@ -1,4 +1,4 @@
-// Distributed assembly into hypre and its solve (issue 7), run by ctest on one
+// Distributed assembly into hypre and its solve, run by ctest on one
 // rank (hofem_mpi_tests) and on two (mpi.two_ranks: mpirun -np 2): either way
 // the answer must be the serial one.
 #include "assembly/assembler.hpp"
@@ -135,7 +135,7 @@ TEST(DistributedSystem, GmresAndRigidBodyModesGiveTheSameSolution) {
   EXPECT_THROW(DistributedLinearSystem(rows, {.amg = "no-such-amg"}), std::invalid_argument);
 }
 
-// The manufactured-solution cube (issue 7's verification): the distributed
+// The manufactured-solution cube: the distributed
 // static solve (elements over the ranks, hypre AMG-PCG) gives the serial
 // (CHOLMOD) L2 and H1 errors to 1e-10 relative, with the same Newton
 // iterations. The distributed linear solves stop at 1e-12 (MmsProblem), so the

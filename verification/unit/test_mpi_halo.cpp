@@ -1,4 +1,4 @@
-// The distributed mesh, its halo and the global row numbering (issue 7), run by
+// The distributed mesh, its halo and the global row numbering, run by
 // ctest on one rank (hofem_mpi_tests), two (mpi.two_ranks) and three
 // (mpi.three_ranks). Expected values come from the global mesh and the element
 // partition, computed independently of the code under test.

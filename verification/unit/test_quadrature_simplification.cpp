@@ -1,4 +1,4 @@
-// Quadrature simplification, second seed §4.4: a subset of at most M points with
+// Quadrature simplification, Longva et al. 2020 §4.4: a subset of at most M points with
 // positive weights that keeps every moment of degree <= m of the input rule.
 #include "embedded/embedded_quadrature.hpp"
 #include "embedded/quadrature_simplification.hpp"
