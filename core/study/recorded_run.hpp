@@ -26,7 +26,8 @@ struct RecordedRun {
   /// nearest to it; a static scene's one state is at t = 1).
   std::vector<double> times;
   std::vector<Eigen::VectorXd> states;
-  nlohmann::json stats;                 ///< stats.json of the run
+  /// stats.json of the run; an empty object when it failed before the runner wrote any (a mesh refused).
+  nlohmann::json stats = nlohmann::json::object();
   bool ok = false;
   std::string message;
 };

@@ -30,9 +30,7 @@ double median(std::vector<double> v) {
 
 // Cost and size of a run, from its stats.json (scene_runner.hpp).
 json cost_of(const RecordedRun& r) {
-  // A run that failed before its first step (a mesh refused) has no statistics.
-  static const json none = json::object();
-  const json& st = r.stats.is_object() ? r.stats : none;
+  const json& st = r.stats;
   std::vector<double> seconds;
   if (st.contains("steps"))
     for (const json& row : st["steps"]) seconds.push_back(row.value("seconds", 0.0));
