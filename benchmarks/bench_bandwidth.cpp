@@ -18,7 +18,7 @@
 #include "bench_common.hpp"
 
 #include "assembly/assembler.hpp"
-#include "manufactured_solution.hpp"
+#include "study/manufactured_solution.hpp"
 #include "solver/block_sparse_matrix.hpp"
 #include "solver/krylov.hpp"
 #include "solver/linear_operator.hpp"
@@ -136,11 +136,11 @@ BENCHMARK(BM_FmaPeak)->Arg(0)->Arg(1)->UseManualTime()->Iterations(1)->Unit(benc
 // PMultigridPreconditioner::bytes_per_apply(). The floor here is the triad on
 // every thread measured right after (the iteration itself runs on every thread).
 void BM_PmgIteration(benchmark::State& state, int order, int n) {
-  verification::MmsCase c;
+  hofem::MmsCase c;
   c.problem = "linear";
   c.order = order;
   c.n = n;
-  const verification::MmsProblem p(c);
+  const hofem::MmsProblem p(c);
   const DofMap dofs(p.mesh.num_nodes(), p.mesh.node_set("boundary"));
   const Assembler assembler(p.mesh, dofs, p.options.quadrature_degree);
   const Eigen::VectorXd x0 = Eigen::Map<const Eigen::VectorXd>(p.mesh.nodes.data(), 3 * p.mesh.num_nodes());

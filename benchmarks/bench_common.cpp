@@ -8,7 +8,7 @@
 
 #include "assembly/assembler.hpp"
 #include "material/material.hpp"
-#include "mesh/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "mesh/box_mesh.hpp"
 #include "solver/linear_solver.hpp"
 
@@ -106,13 +106,13 @@ std::unique_ptr<LinearSystem> build_system(const SystemKey& key) {
   std::unique_ptr<Material> neo_hookean;
   std::vector<int> clamped;
   if (mms) {
-    verification::MmsCase c;
+    hofem::MmsCase c;
     c.problem = "linear";
     c.linear_solver = "cholmod";  // the default options (this builds the system only)
     c.cell = key.cell;
     c.order = key.order;
     c.n = key.n;
-    s->mms = std::make_unique<verification::MmsProblem>(c);
+    s->mms = std::make_unique<hofem::MmsProblem>(c);
     clamped = s->mms->mesh.node_set("boundary");
   } else {
     const BoxSpec bar{{0, 0, 0}, {kBarLength, 1, 1}, {static_cast<int>(kBarLength) * key.n, key.n, key.n}};
@@ -179,15 +179,15 @@ const LinearSystem& linear_system(const SystemKey& key) {
   return *cache.front();
 }
 
-verification::MmsErrors solution_errors(const LinearSystem& s, const Eigen::VectorXd& x) {
+hofem::MmsErrors solution_errors(const LinearSystem& s, const Eigen::VectorXd& x) {
   if (!s.has_exact) {
-    verification::MmsErrors none;
+    hofem::MmsErrors none;
     none.l2 = none.h1 = std::numeric_limits<double>::quiet_NaN();
     return none;
   }
   Eigen::VectorXd u = s.u_fixed;
   s.dofs.add_free(x, u);
-  return verification::mms_errors(s.mesh(), s.mms->ustar, u);
+  return hofem::mms_errors(s.mesh(), s.mms->ustar, u);
 }
 
 // ---- measurement ------------------------------------------------------------

@@ -22,7 +22,7 @@
 // the reason.
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_matrix.hpp"
-#include "manufactured_solution.hpp"
+#include "study/manufactured_solution.hpp"
 #include "mesh/mesh.hpp"
 #include "quadrature/cell_type.hpp"
 
@@ -90,7 +90,7 @@ struct SystemKey {
 
 struct LinearSystem {
   SystemKey key;
-  std::unique_ptr<verification::MmsProblem> mms;  ///< mms-linear: mesh, material, u*
+  std::unique_ptr<hofem::MmsProblem> mms;  ///< mms-linear: mesh, material, u*
   Mesh bar;                 ///< hessian-nh*: the bar's mesh
   DofMap dofs;
   SparseMatrix K;
@@ -108,7 +108,7 @@ struct LinearSystem {
 const LinearSystem& linear_system(const SystemKey& key);
 
 /// L2 / H1 errors of a free-DOF solution x of an MMS system (NaN without u*).
-verification::MmsErrors solution_errors(const LinearSystem& s, const Eigen::VectorXd& x);
+hofem::MmsErrors solution_errors(const LinearSystem& s, const Eigen::VectorXd& x);
 
 // ---- measurement ------------------------------------------------------------
 

@@ -16,7 +16,7 @@
 #include "embedded/finite_cell_quadrature.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
-#include "mesh/gmsh_reader.hpp"
+#include "io/gmsh_reader.hpp"
 #include "mesh/tube_mesh.hpp"
 
 #include <benchmark/benchmark.h>

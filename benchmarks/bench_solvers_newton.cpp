@@ -17,7 +17,7 @@
 // step —, l2_error / h1_error against u*, peak_MB / extra_MB.
 #include "bench_common.hpp"
 
-#include "manufactured_solution.hpp"
+#include "study/manufactured_solution.hpp"
 #include "problem/static_elasticity.hpp"
 #include "solver/linear_solver.hpp"
 
@@ -33,7 +33,7 @@ namespace {
 bool is_direct(const std::string& name) { return name == "cholmod" || name == "umfpack" || name == "eigen-ldlt"; }
 
 struct NewtonCase {
-  verification::MmsCase mms;
+  hofem::MmsCase mms;
   int level = 0;
   std::string solver;
   bool eisenstat_walker = false;
@@ -45,13 +45,13 @@ struct NewtonCase {
 };
 
 // The problem of the last case (mesh, material, u*), rebuilt when the case changes.
-const verification::MmsProblem& mms_problem(const verification::MmsCase& c) {
-  static std::unique_ptr<verification::MmsProblem> problem;
+const hofem::MmsProblem& mms_problem(const hofem::MmsCase& c) {
+  static std::unique_ptr<hofem::MmsProblem> problem;
   static std::string key;
   const std::string k = std::to_string(c.order) + "/" + std::to_string(c.n);
   if (!problem || key != k) {
     problem.reset();
-    problem = std::make_unique<verification::MmsProblem>(c);
+    problem = std::make_unique<hofem::MmsProblem>(c);
     key = k;
   }
   return *problem;
@@ -64,7 +64,7 @@ struct NewtonSample {
   std::string error;
 };
 
-NewtonSample solve_once(const verification::MmsProblem& p, const NewtonCase& c) {
+NewtonSample solve_once(const hofem::MmsProblem& p, const NewtonCase& c) {
   NewtonSample s;
   StaticOptions options = p.options;
   options.linear_solver = c.solver;
@@ -103,7 +103,7 @@ void run_newton(benchmark::State& state, const NewtonCase& c) {
   } catch (const std::exception& e) {
     return skip(state, std::string("not available: ") + e.what());
   }
-  const verification::MmsProblem& p = mms_problem(c.mms);
+  const hofem::MmsProblem& p = mms_problem(c.mms);
   for (auto _ : state) {
     const PeakMemory memory;
     std::vector<NewtonSample> samples;
@@ -131,7 +131,7 @@ void run_newton(benchmark::State& state, const NewtonCase& c) {
       state.counters["rel_residual"] = r.steps.back().final_residual / r.steps.back().force_scale;
     const bool ok = s->error.empty() && r.converged;
     if (ok) {
-      const auto err = verification::mms_errors(p.mesh, p.ustar, s->u);
+      const auto err = hofem::mms_errors(p.mesh, p.ustar, s->u);
       state.counters["l2_error"] = err.l2;
       state.counters["h1_error"] = err.h1;
     }

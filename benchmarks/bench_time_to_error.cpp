@@ -1,5 +1,5 @@
 // Time to an accurate answer (BM_TimeToError): the manufactured-solution cube of
-// `hofem mms` (verification/suite/manufactured_solution.hpp) solved from scratch
+// `hofem mms` (core/study/manufactured_solution.hpp) solved from scratch
 // per repetition, for element order x mesh size x linear solver. What a user of
 // `hofem mms` waits for is timed: DOF map, sparsity pattern, load vector,
 // Hessian assembly, solver set-up and solve (StaticElasticity's constructor and
@@ -22,7 +22,7 @@
 // reports/ (scripts/plot_reports.py) reads the medians.
 #include "basis/basis_tabulation.hpp"
 #include "bench_common.hpp"
-#include "manufactured_solution.hpp"
+#include "study/manufactured_solution.hpp"
 #include "solver/linear_solver.hpp"
 
 #include <benchmark/benchmark.h>
@@ -47,8 +47,8 @@ struct TimeToErrorCase {
   bool scaling = false; ///< BM_Scaling: no reference error, no separate set-up timing
 };
 
-verification::MmsCase mms_case(const TimeToErrorCase& c) {
-  verification::MmsCase m;
+hofem::MmsCase mms_case(const TimeToErrorCase& c) {
+  hofem::MmsCase m;
   m.problem = c.problem;
   m.order = c.order;
   m.n = c.n;
@@ -71,13 +71,13 @@ double reference_l2_error(const TimeToErrorCase& c, long unknowns, const std::st
   auto& cache = reference_cache();
   const auto key = std::make_tuple(c.problem, c.order, c.n);
   if (auto it = cache.find(key); it != cache.end()) return it->second;
-  verification::MmsCase ref = mms_case(c);
+  hofem::MmsCase ref = mms_case(c);
   ref.linear_solver = "cholmod";
   if (unknowns > 100000 && iterative_solver != "cholmod") {
     ref.linear_solver = iterative_solver;
     ref.algebraic_rtol = 1e-12;
   }
-  const verification::MmsResult r = verification::run_mms(ref);
+  const hofem::MmsResult r = hofem::run_mms(ref);
   return cache[key] = r.converged ? r.l2_error : std::nan("");
 }
 
@@ -108,7 +108,7 @@ void BM_TimeToError(benchmark::State& state, const TimeToErrorCase& c) {
   double peak = 0.0, solver_setup = 0.0;
   for (auto _ : state) {
     clear_tabulation_cache();
-    const verification::MmsProblem p(mms_case(c));  // mesh, u*, body force: not timed
+    const hofem::MmsProblem p(mms_case(c));  // mesh, u*, body force: not timed
     PeakMemory memory;
     const auto t0 = Clock::now();
     StaticElasticity problem(p.mesh, *p.material, p.dirichlet, p.body_force, p.options);
@@ -121,7 +121,7 @@ void BM_TimeToError(benchmark::State& state, const TimeToErrorCase& c) {
       return;
     }
     unknowns = static_cast<long>(problem.dofs().num_free());
-    l2 = verification::mms_errors(p.mesh, p.ustar, problem.displacement()).l2;
+    l2 = hofem::mms_errors(p.mesh, p.ustar, problem.displacement()).l2;
     if (c.scaling) continue;
     if (solver_setup == 0.0) solver_setup = time_solver_setup(problem, report.linear_solver);
     if (report.linear_solver == "cholmod") remember_reference(c, l2);  // a direct solve is the reference

@@ -75,7 +75,7 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   study->add_option("study", so.study, "Study file (JSON; scripts/studies/ has the built-in ones)")->required();
   study->add_option("--out", so.out, "Output directory (default: reports/studies/NAME)");
 
-  // Input caps (mesh/input_file.hpp), raised per run; validated in commands.cpp.
+  // Input caps (io/input_file.hpp), raised per run; validated in commands.cpp.
   const std::string limit_help = "Raise an input cap: NAME=VALUE, NAME one of mesh-file-mb, scene-file-kb, elements, "
                                  "nodes, order, json-depth, boundary-entries (repeatable; README: input caps)";
   mesh->add_option("--limit", out.mesh.limits, limit_help)->allow_extra_args(false);

@@ -1,18 +1,17 @@
 #include "commands.hpp"
 
-#include "manufactured_solution.hpp"
-#include "run_verification.hpp"
+#include "study/manufactured_solution.hpp"
 
 #include "basis/reference_basis.hpp"
-#include "mesh/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "mesh/box_mesh.hpp"
-#include "mesh/gmsh_reader.hpp"
-#include "mesh/input_file.hpp"
-#include "mesh/mesh_partition.hpp"
+#include "io/gmsh_reader.hpp"
+#include "io/input_file.hpp"
+#include "distributed/mesh_partition.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "mesh/mesh_reorient.hpp"
 #include "mesh/mesh_upgrade.hpp"
-#include "mesh/vtu_writer.hpp"
+#include "io/vtu_writer.hpp"
 #include "quadrature/rule_library.hpp"
 
 #include "scene/scene.hpp"
@@ -243,7 +242,7 @@ int run_mms(const MmsOptions& o) {
   check_order(o.order);
   check_cube_size(o.n, cell, o.order, "--n");
   if (!o.vtu.empty()) ensure_parent_directory(o.vtu);
-  verification::MmsCase c{o.problem, cell, o.order, o.n, o.perturbed, o.solver, o.vtu};
+  hofem::MmsCase c{o.problem, cell, o.order, o.n, o.perturbed, o.solver, o.vtu};
   c.distributed = o.distributed;
   if ((o.krylov != "pcg" || o.amg != "amg" || o.rigid_body_modes) && !o.distributed)
     throw UsageError("--krylov, --amg and --rigid-body-modes choose the distributed solver: add --distributed");
@@ -253,7 +252,7 @@ int run_mms(const MmsOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
-  const verification::MmsResult r = verification::run_mms(c);
+  const hofem::MmsResult r = hofem::run_mms(c);
   int rank = 0, ranks = 1;
   if (o.distributed) {  // the problem started MPI
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -283,24 +282,6 @@ int run_mms(const MmsOptions& o) {
                r.newton_iterations, r.message, r.linear_solver, r.linear_solver_reason, r.newton_rtol, r.linear_iterations, r.setup_seconds, r.assembly_seconds, r.solve_seconds, r.total_seconds);
   }
   return r.converged ? 0 : 1;
-}
-
-int run_verify(const VerifyOptions& o) {
-  if (o.convergence != "none" && o.convergence != "ci" && o.convergence != "full")
-    throw UsageError(fmt::format("--convergence: unknown preset '{}' (valid: none, ci, full)", o.convergence));
-  verification::Report report = verification::run_all_checks({o.convergence});
-  // --group: the file holds that group's rows, measurements and summary only.
-  const nlohmann::json j = o.group.empty() ? report.to_json() : report.only(o.group).to_json();
-  ensure_parent_directory(o.out);
-  write_file_atomically(o.out, j.dump(1) + "\n");  // complete or absent, never truncated
-  if (!o.quiet) {
-    fmt::print("{}", report.summary_table());
-    for (const auto& r : report.rows())
-      if (!r.pass) fmt::print("FAILED {} | {}: measured {:.3e}, threshold {} {:.3e}\n", r.group, r.name, r.measured,
-                              r.compare == verification::Compare::AtMost ? "<=" : ">=", r.threshold);
-  }
-  fmt::print("verification: {} checks, {} failed -> {}\n", report.rows().size(), report.failures(), o.out);
-  return report.failures() == 0 ? 0 : 1;
 }
 
 int run_scene_file(const RunOptions& o) {

@@ -38,7 +38,7 @@ struct MeshOptions {
   std::string vtu;
   bool json = false;
   int partition = 0;  ///< > 0: also partition the elements into this many parts (RCB) and report the quality
-  std::vector<std::string> limits;  ///< --limit NAME=VALUE: raised input caps (mesh/input_file.hpp)
+  std::vector<std::string> limits;  ///< --limit NAME=VALUE: raised input caps (io/input_file.hpp)
   bool reorient = false;            ///< flip straight inverted elements of --msh, with a warning
 };
 int run_mesh(const MeshOptions& o);
@@ -66,7 +66,9 @@ struct VerifyOptions {
   bool quiet = false;
   std::string convergence = "ci";
 };
-int run_verify(const VerifyOptions& o);
+// `hofem verify` is run by its own executable, hofem-verify
+// (verification/verify_main.cpp), so that this one does not link the
+// verification suite; main.cpp hands the arguments over.
 
 struct RunOptions {
   std::string scene;

@@ -55,7 +55,7 @@ target_link_libraries(hofem::suitesparse INTERFACE
   ${CHOLMOD_LIBRARY} ${UMFPACK_LIBRARY} ${AMD_LIBRARY} ${COLAMD_LIBRARY}
   ${SUITESPARSE_CONFIG_LIBRARY} ${OPENBLAS_LIBRARY})
 
-# GLPK 5.0: the simplex solver of the LP quadrature simplification (second seed §4.4).
+# GLPK 5.0: the simplex solver of the LP quadrature simplification (Longva et al. 2020 §4.4).
 find_path(GLPK_INCLUDE_DIR glpk.h)
 find_library(GLPK_LIBRARY glpk)
 set(_glpk_ok FALSE)

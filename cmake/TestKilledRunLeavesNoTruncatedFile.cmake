@@ -1,4 +1,4 @@
-# `hofem run` killed by SIGKILL (the HOFEM_TEST_KILL_WRITING hook, core/mesh/atomic_file.hpp)
+# `hofem run` killed by SIGKILL (the HOFEM_TEST_KILL_WRITING hook, core/io/atomic_file.hpp)
 # halfway through writing frame 2: every file under a real name must be complete,
 # the half-written frame exists only as a ".partial-" file, and no stats.json or
 # .pvd claims a finished run. A second, normal run into the same folder clears

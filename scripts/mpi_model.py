@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A sizing model for distributed runs past this machine (issue 7), from the
+"""A sizing model for distributed runs past this machine, from the
 1- and 2-rank measurements of scripts/bench-mpi (reports/mpi/scaling.json).
 
     /usr/bin/python3 scripts/mpi_model.py [reports/mpi]
@@ -22,7 +22,7 @@ NET_LATENCY = 2e-6             # s per message (assumption)
 CYCLE_MESSAGES = 30            # halo messages per V-cycle: ~10 levels x (smoother + residual + prolongation)
 SETUP_MESSAGES_PER_LEVEL = 12  # BoomerAMG set-up per level: strength, HMIS sweeps, interpolation and RAP row exchanges
 RAP_ROW_BYTES = 12 * 80        # a row of P or A travelling in the set-up: ~80 entries x (8 B value + 4 B index)
-ITERATION_GROWTH = 1.10        # AMG-PCG iterations x1.10 per 8x unknowns (measured in issue 4: P2 19 -> 21 over 350x)
+ITERATION_GROWTH = 1.10        # AMG-PCG iterations x1.10 per 8x unknowns (measured by the solver sweep: P2 19 -> 21 over 350x)
 COARSENING = 8                 # unknowns shrink ~8x per AMG level (HMIS in 3D)
 SIZES = [1e6, 1e7, 1e8, 1e9]
 
@@ -163,7 +163,7 @@ def main():
                                                     "projections_replicated_input": replicated,
                                                     "amg_setup_against_ranks_1e8": setup,
                                                     "assumptions": assumptions}, indent=1))
-    L = ["# Sizing distributed runs (issue 7)", "",
+    L = ["# Sizing distributed runs", "",
          "Made by `scripts/mpi_model.py` from `reports/mpi/scaling.json` (`scripts/bench-mpi`: the Neo-Hookean",
          "manufactured solution on 1 and 2 ranks of this 2-core, 24 GiB machine, one thread per rank, medians of 3).",
          "Each rank keeps only its piece of the mesh (its elements, owned and ghost nodes); pattern, element",
@@ -209,7 +209,7 @@ def main():
     L += ["", "## Extrapolated", "",
           "Assumptions (not measured): 20 GiB usable per 24 GiB node, 2 ranks per node; cubic RCB parts (a",
           "matrix-vector product receives on 6 faces, the problem's halo has ghosts on 3); Krylov iterations",
-          "growing x1.10 per 8x unknowns (issue 4's measured AMG scaling) from the 1-rank count; "
+          "growing x1.10 per 8x unknowns (the solver sweep's measured AMG scaling) from the 1-rank count; "
           f"{CYCLE_MESSAGES} halo messages per V-cycle and {SETUP_MESSAGES_PER_LEVEL} per AMG level in the set-up,",
           f"{NET_LATENCY * 1e6:.0f} us and {NET_BANDWIDTH / 1e9:.0f} GB/s; set-up rows of ~{RAP_ROW_BYTES} bytes; "
           f"{COARSENING}x coarsening per level. Compute per rank scales with the",

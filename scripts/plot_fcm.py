@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Figures of the second seed's finite-cell experiments, drawn from the rows and
+"""Figures of the finite-cell experiments of Longva et al. 2020, drawn from the rows and
 measurements of reports/verification.json (`hofem verify`).
 
     /usr/bin/python3 scripts/plot_fcm.py [reports-dir | report.json]

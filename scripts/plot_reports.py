@@ -20,7 +20,7 @@ except ImportError as e:  # pragma: no cover - environment problem, say what is 
              f"and run with /usr/bin/python3")
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from plot_solver_sweep import plot_sweep  # noqa: E402  (issue 4's solver sweep)
+from plot_solver_sweep import plot_sweep  # noqa: E402  (the solver sweep)
 
 RULE_NAME = re.compile(r"^(\w+) (\S+) \(n=(\d+), degree (\d+)\)$")
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plots and tables of the solver sweep (issue 4) from solver_benchmarks.json and
+"""Plots and tables of the solver sweep from solver_benchmarks.json and
 solver_histories.json (written by build/bin/hofem_bench, see reports/README.md).
 Used by plot_reports.py; on its own, for the full preset's directory:
 

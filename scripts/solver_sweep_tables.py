@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The solver sweep's data (parsed from Google Benchmark JSON), its tables and the
-verdicts on issue 4's targets, printed as Markdown. Used by plot_solver_sweep.py."""
+verdicts on the sweep's targets, printed as Markdown. Used by plot_solver_sweep.py."""
 import math
 import re
 
@@ -195,7 +195,7 @@ def time_at_error(pts, error):
 
 
 def print_targets(runs):
-    print("\n### Targets of issue 4 (measured, this run)\n")
+    print("\n### The sweep's targets (measured, this run)\n")
     cg = [r for r in runs if r["kind"] == "BM_CgIteration" and r.get("order") == 2]
     for r in cg:
         ratio = r.get("floor_ratio", float("nan"))

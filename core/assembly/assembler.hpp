@@ -12,7 +12,7 @@
 #include "assembly/sparse_matrix.hpp"
 #include "assembly/sparsity_pattern.hpp"
 #include "basis/basis_tabulation.hpp"
-#include "basis/element_rules.hpp"
+#include "embedded/element_rules.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
 #include "quadrature/quadrature_rule.hpp"

@@ -19,7 +19,7 @@
 #include "dynamics/prescribed_motion.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
-#include "problem/rank_stats.hpp"
+#include "solver/rank_figures.hpp"
 #include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/newton.hpp"
@@ -162,7 +162,7 @@ class DynamicElasticity {
   /// Distributed runs: the piece, its halo and the global numbering; else null.
   const DistributedMesh* distributed_mesh() const { return dist_.get(); }
   const DistributedDofs* distributed_dofs() const { return rows_.get(); }
-  /// Distributed, after the first step: this rank's figures (problem/rank_stats.hpp).
+  /// Distributed, after the first step: this rank's figures (parallel/rank_stats.hpp).
   /// Throws std::logic_error otherwise.
   RankStats rank_stats() const;
 

@@ -1,7 +1,7 @@
 #pragma once
 // Finite-cell quadrature (Longva et al. 2020 §4.4-4.5, §5.3): for every cell of a
 // background mesh, rules over the part of the embedded geometry inside it, in
-// the cell's reference coordinates, ready for the Assembler (ElementRules, basis/element_rules.hpp).
+// the cell's reference coordinates, ready for the Assembler (ElementRules, embedded/element_rules.hpp).
 //
 // Background cells must be affine: Tet4, straight-sided Tet10 (and higher), and
 // parallelepiped Hex8/Hex20 (box grids, sheared or rotated). Their map
@@ -27,7 +27,7 @@
 //    seed: "only needed once").
 // Uncut cells (volume fraction 1) keep the standard rules (null entries).
 #include "basis/basis_tabulation.hpp"
-#include "basis/element_rules.hpp"
+#include "embedded/element_rules.hpp"
 #include "embedded/tet_clipping.hpp"
 #include "mesh/mesh.hpp"
 

@@ -9,7 +9,7 @@
 #include "assembly/dof_map.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
-#include "problem/rank_stats.hpp"
+#include "solver/rank_figures.hpp"
 #include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/newton.hpp"

@@ -2,7 +2,7 @@
 // line or the key path (json_input.hpp).
 #include "scene/json_input.hpp"
 
-#include "mesh/input_file.hpp"
+#include "io/input_file.hpp"
 
 #include <fmt/format.h>
 

@@ -1,8 +1,9 @@
 #include "scene/scene_embedding.hpp"
+#include "scene/scene_mesh.hpp"
 
 #include "assembly/assembler.hpp"
 #include "embedded/embedded_quadrature.hpp"
-#include "mesh/vtu_writer.hpp"
+#include "io/vtu_writer.hpp"
 
 #include <Eigen/LU>
 #include <fmt/format.h>

@@ -1,10 +1,11 @@
 #include "scene/scene_runner.hpp"
 
 #include "material/material.hpp"
-#include "mesh/atomic_file.hpp"
-#include "mesh/vtu_writer.hpp"
+#include "io/atomic_file.hpp"
+#include "io/vtu_writer.hpp"
 #include "problem/static_elasticity.hpp"
 #include "scene/scene_embedding.hpp"
+#include "scene/scene_mesh.hpp"
 
 #include "parallel/mpi_runtime.hpp"
 

@@ -18,7 +18,6 @@
 #include "solver/linear_solver.hpp"
 
 #include <Eigen/Core>
-#include <mpi.h>
 
 #include <memory>
 #include <string>

@@ -4,7 +4,7 @@
 // quadrature, and the displacement at chosen times (t = 0 always: the faceting
 // floor), taken from the run through SceneRunOptions::observer - nothing is read
 // back from VTU frames, and nothing is recorded between the chosen times.
-#include "basis/element_rules.hpp"
+#include "embedded/element_rules.hpp"
 #include "mesh/mesh.hpp"
 #include "scene/scene.hpp"
 

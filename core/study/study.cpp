@@ -1,6 +1,6 @@
 #include "study/study.hpp"
 
-#include "mesh/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "study/scene_error.hpp"
 
 #include <fmt/format.h>

@@ -1,7 +1,7 @@
 // libFuzzer target: the Gmsh .msh reader on arbitrary text. The reader documents
-// that every malformed input throws MeshError (core/mesh/gmsh_reader.hpp); any
+// that every malformed input throws MeshError (core/io/gmsh_reader.hpp); any
 // other exception escaping, a crash, a leak or undefined behaviour is a finding.
-#include "mesh/gmsh_reader.hpp"
+#include "io/gmsh_reader.hpp"
 #include "mesh/mesh.hpp"
 
 #include <cstddef>

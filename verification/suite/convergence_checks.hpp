@@ -2,7 +2,7 @@
 // Manufactured-solution convergence studies: error tables and observed
 // rates on the finest pair of each sequence, asserted against the theoretical
 // rates L2 >= p + 1 - 0.15 and H1 >= p - 0.15.
-#include "manufactured_solution.hpp"
+#include "study/manufactured_solution.hpp"
 #include "report.hpp"
 
 #include <string>

@@ -27,7 +27,7 @@
 #include "embedded/embedded_surface_quadrature.hpp"
 #include "embedded/finite_cell_quadrature.hpp"
 #include "half_ball.hpp"
-#include "manufactured_solution.hpp"
+#include "study/manufactured_solution.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "problem/static_elasticity.hpp"

@@ -183,8 +183,8 @@ void add_lame_checks(Report& report) {
       // this tested conversion, so the seed's own materials are checked too:
       // Fig. 5 and the cylinder (E = 3e6, nu = 0.4), the armadillo (5e5, 0.4).
       {3e6, 0.4, 1071428.5714285714, 4285714.2857142857,
-       "second seed Fig. 5: mu = 3e6/2.8 = 7.5e6/7, lambda = 1.2e6/0.28 = 3e7/7"},
-      {5e5, 0.4, 178571.42857142857, 714285.71428571429, "second seed §6.5: mu = 5e5/2.8 = 1.25e6/7, lambda = 5e6/7"},
+       "Longva et al. 2020 Fig. 5: mu = 3e6/2.8 = 7.5e6/7, lambda = 1.2e6/0.28 = 3e7/7"},
+      {5e5, 0.4, 178571.42857142857, 714285.71428571429, "Longva et al. 2020 §6.5: mu = 5e5/2.8 = 1.25e6/7, lambda = 5e6/7"},
   };
   // Rounding: <= 4 operations (~2 eps) plus the decimal nu's representation error
   // (eps/2 relative) amplified by d ln lambda / d ln nu = 1/(1+nu) + 2nu/(1-2nu)

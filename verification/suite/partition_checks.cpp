@@ -1,7 +1,7 @@
 #include "partition_checks.hpp"
 
 #include "mesh/box_mesh.hpp"
-#include "mesh/mesh_partition.hpp"
+#include "distributed/mesh_partition.hpp"
 #include "mesh/tube_mesh.hpp"
 
 #include <fmt/format.h>

@@ -1,6 +1,6 @@
 #pragma once
 // Partition quality: the recursive coordinate bisection of
-// core/mesh/mesh_partition on structured boxes (Tet4/Tet10/Tet20, Hex8/Hex20)
+// core/distributed/mesh_partition on structured boxes (Tet4/Tet10/Tet20, Hex8/Hex20)
 // and hollow cylinders, K = 2, 4, 8 parts. Per case and K: every element in
 // exactly one part, element counts balanced, every node owned once, and the
 // ghost fraction and edge cut (cut faces) held to bounds derived from the cut

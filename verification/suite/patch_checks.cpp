@@ -1,5 +1,5 @@
 #include "element_checks.hpp"
-#include "manufactured_solution.hpp"
+#include "study/manufactured_solution.hpp"
 
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"

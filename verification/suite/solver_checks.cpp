@@ -246,7 +246,7 @@ void add_amg_scaling_rows(Report& report) {
     }
     report.check("solvers.amg_scaling", fmt::format("Tet order {} cg+amg iterations, finest / coarsest", s.order),
                  static_cast<double>(its.back()) / its.front(), 1.5, Compare::AtMost,
-                 "issue 4: near mesh-independent AMG convergence, at most 1.5x over "
+                 "near mesh-independent AMG convergence, at most 1.5x over "
                  "three refinements; " +
                      sizes);
   }

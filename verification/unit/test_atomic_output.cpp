@@ -3,7 +3,7 @@
 // only a ".partial-" file and any older complete file untouched. A failed scene
 // run leaves a stats.json that says it failed and why; a run into a folder with
 // an older run's frames removes them first.
-#include "mesh/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_runner.hpp"
 

@@ -2,7 +2,7 @@
 // mesh). Checked against the whole mesh from box_mesh(): every element once,
 // with the same nodes in the same order, every node owned once by the lowest
 // part that has it, and the box's node sets.
-#include "mesh/box_partition.hpp"
+#include "distributed/box_partition.hpp"
 
 #include <gtest/gtest.h>
 

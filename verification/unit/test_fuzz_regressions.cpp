@@ -17,7 +17,7 @@
 
 #include "command_line.hpp"
 #include "command_line_input.hpp"
-#include "mesh/gmsh_reader.hpp"
+#include "io/gmsh_reader.hpp"
 #include "scene/scene.hpp"
 
 namespace hofem {

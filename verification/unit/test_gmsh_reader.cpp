@@ -9,7 +9,7 @@
 #include <string>
 
 #include "basis/lagrange_nodes.hpp"
-#include "mesh/gmsh_reader.hpp"
+#include "io/gmsh_reader.hpp"
 #include "quadrature/cell_type.hpp"
 
 namespace hofem {

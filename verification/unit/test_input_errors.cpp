@@ -2,12 +2,13 @@
 // read, caps before anything is allocated, a 10^5-deep JSON before it is
 // parsed, a number overflow with its key, an inverted element with its file,
 // line and tag. Every case feeds a real file (data/bad_*, or one made here).
-#include "mesh/gmsh_reader.hpp"
-#include "mesh/input_file.hpp"
+#include "io/gmsh_reader.hpp"
+#include "io/input_file.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "mesh/mesh_reorient.hpp"
 #include "mesh/box_mesh.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_mesh.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Box meshes, order upgrade (shared nodes), quality checks and their errors.
 #include "mesh/box_mesh.hpp"
-#include "mesh/gmsh_reader.hpp"
+#include "io/gmsh_reader.hpp"
 #include "mesh/mesh_quality.hpp"
 #include "mesh/mesh_upgrade.hpp"
 

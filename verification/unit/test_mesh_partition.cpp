@@ -1,7 +1,7 @@
 // Element partitions and the distributed row numbering.
-#include "mesh/local_mesh.hpp"
+#include "distributed/local_mesh.hpp"
 #include "mesh/box_mesh.hpp"
-#include "mesh/mesh_partition.hpp"
+#include "distributed/mesh_partition.hpp"
 #include "mesh/tube_mesh.hpp"
 
 #include <gtest/gtest.h>

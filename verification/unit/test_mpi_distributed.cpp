@@ -3,15 +3,15 @@
 // the answer must be the serial one.
 #include "assembly/assembler.hpp"
 #include "assembly/distributed_dofs.hpp"
-#include "mesh/local_mesh.hpp"
+#include "distributed/local_mesh.hpp"
 #include "dynamics/dynamic_elasticity.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
-#include "mesh/mesh_partition.hpp"
+#include "distributed/mesh_partition.hpp"
 #include "parallel/mpi_runtime.hpp"
 #include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
-#include "manufactured_solution.hpp"
+#include "study/manufactured_solution.hpp"
 
 #include <fmt/format.h>
 
@@ -147,14 +147,14 @@ TEST(DistributedSystem, ManufacturedSolutionMatchesSerial) {
   ensure_hypre();
   for (const char* problem : {"linear", "neohookean"})
     for (int order : {1, 2, 3}) {
-      verification::MmsCase c;
+      hofem::MmsCase c;
       c.problem = problem;
       c.order = order;
       c.n = 3;  // 8 / 125 / 512 interior nodes for P1 / P2 / P3
       c.linear_solver = "cholmod";  // the serial reference: direct, Newton to 1e-10
-      const verification::MmsResult serial = verification::run_mms(c);
+      const hofem::MmsResult serial = hofem::run_mms(c);
       c.distributed = true;
-      const verification::MmsResult distributed = verification::run_mms(c);
+      const hofem::MmsResult distributed = hofem::run_mms(c);
       const std::string what = fmt::format("{} P{}", problem, order);
       ASSERT_TRUE(serial.converged && distributed.converged) << what << ": " << distributed.message;
       EXPECT_EQ(distributed.newton_iterations, serial.newton_iterations) << what;
@@ -168,14 +168,14 @@ TEST(DistributedSystem, ManufacturedSolutionMatchesSerial) {
   // Unperturbed distributed cases run on pieces each rank generates itself
   // (box_piece); a perturbed one takes the other path, the whole mesh
   // partitioned by RCB on every rank. The same agreement either way.
-  verification::MmsCase c;
+  hofem::MmsCase c;
   c.order = 2;
   c.n = 3;
   c.perturbed = true;
   c.linear_solver = "cholmod";
-  const verification::MmsResult serial = verification::run_mms(c);
+  const hofem::MmsResult serial = hofem::run_mms(c);
   c.distributed = true;
-  const verification::MmsResult distributed = verification::run_mms(c);
+  const hofem::MmsResult distributed = hofem::run_mms(c);
   ASSERT_TRUE(serial.converged && distributed.converged) << distributed.message;
   EXPECT_EQ(distributed.newton_iterations, serial.newton_iterations);
   EXPECT_NEAR(distributed.l2_error / serial.l2_error, 1.0, 1e-10);

@@ -4,7 +4,7 @@
 // partition, computed independently of the code under test.
 #include "assembly/distributed_dofs.hpp"
 #include "mesh/box_mesh.hpp"
-#include "mesh/mesh_partition.hpp"
+#include "distributed/mesh_partition.hpp"
 #include "parallel/mpi_runtime.hpp"
 
 #include <gtest/gtest.h>

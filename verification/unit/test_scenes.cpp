@@ -3,8 +3,9 @@
 // its frames, .pvd and stats.json while building only what the scene needs.
 #include "assembly/assembler.hpp"
 #include "mesh/tube_mesh.hpp"
-#include "mesh/vtu_writer.hpp"
+#include "io/vtu_writer.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_mesh.hpp"
 #include "scene/scene_embedding.hpp"
 #include "scene/scene_runner.hpp"
 

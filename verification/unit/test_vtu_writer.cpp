@@ -1,7 +1,7 @@
-// VTK output (core/mesh/vtu_writer): Gmsh -> VTK node orderings checked against the
+// VTK output (core/io/vtu_writer): Gmsh -> VTK node orderings checked against the
 // coordinates VTK documents for each ordering, and the written .vtu/.pvd files read
 // back with a small XML reader (no VTK needed).
-#include "mesh/vtu_writer.hpp"
+#include "io/vtu_writer.hpp"
 
 #include "basis/lagrange_nodes.hpp"
 

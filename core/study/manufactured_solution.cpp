@@ -1,13 +1,13 @@
-#include "manufactured_solution.hpp"
+#include "study/manufactured_solution.hpp"
 
 #include "assembly/assembler.hpp"
 #include "basis/basis_tabulation.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
-#include "mesh/box_partition.hpp"
+#include "distributed/box_partition.hpp"
 #include "parallel/mpi_runtime.hpp"
 #include "mesh/mesh_upgrade.hpp"
-#include "mesh/vtu_writer.hpp"
+#include "io/vtu_writer.hpp"
 #include "problem/static_elasticity.hpp"
 #include "quadrature/rule_library.hpp"
 
@@ -20,7 +20,7 @@
 #include <random>
 #include <stdexcept>
 
-namespace hofem::verification {
+namespace hofem {
 
 namespace {
 
@@ -255,4 +255,4 @@ MmsResult run_mms(const MmsCase& c) {
   return r;
 }
 
-}  // namespace hofem::verification
+}  // namespace hofem

@@ -5,9 +5,9 @@
 // name its line. Sections are first read into raw tables (nodes, elements, entities,
 // names); assemble() then keeps the volume elements and the physical groups and
 // renumbers the nodes that are used.
-#include "mesh/gmsh_reader.hpp"
-#include "mesh/input_file.hpp"
-#include "mesh/text_lines.hpp"
+#include "io/gmsh_reader.hpp"
+#include "io/input_file.hpp"
+#include "io/text_lines.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "mesh/box_partition.hpp"
+#include "distributed/box_partition.hpp"
 
 #include <fmt/format.h>
 

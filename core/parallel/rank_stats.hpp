@@ -2,10 +2,11 @@
 // What one rank of a distributed run holds, sends and spends: the
 // per-rank figures behind the scaling report and the sizing model
 // (scripts/mpi_model.py). Gathered so that rank 0 can write them all.
-#include "assembly/assembler.hpp"
-#include "assembly/distributed_dofs.hpp"
-#include "solver/linear_solver.hpp"
-
+//
+// The figures are plain counts and times, filled by the layers that know them
+// (solver/rank_figures.hpp: the mesh piece, the DOF rows, the assembler and
+// the hypre solver); this layer only gathers and writes them.
+#include <mpi.h>
 #include <nlohmann/json.hpp>
 
 #include <vector>
@@ -25,10 +26,6 @@ struct RankStats {
   double ij_seconds = 0.0, amg_setup_seconds = 0.0, krylov_seconds = 0.0;
 };
 
-/// This rank's figures; `solver` may be any LinearSolver (only a distributed
-/// hypre solver contributes matrix and timing figures).
-RankStats rank_stats(const DistributedMesh& mesh, const DistributedDofs& rows, const Assembler& assembler,
-                     const LinearSolver& solver);
 /// Collective: every rank's figures, on every rank.
 std::vector<RankStats> gather_rank_stats(const RankStats& mine, MPI_Comm comm);
 nlohmann::json to_json(const std::vector<RankStats>& ranks);

@@ -18,7 +18,7 @@
 // say on the whole mesh. Coordinates are computed from the lattice index with
 // one formula on every rank, so shared nodes agree bitwise.
 #include "mesh/box_mesh.hpp"
-#include "mesh/local_mesh.hpp"
+#include "distributed/local_mesh.hpp"
 
 #include <array>
 #include <vector>

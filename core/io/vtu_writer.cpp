@@ -1,6 +1,6 @@
-#include "mesh/vtu_writer.hpp"
+#include "io/vtu_writer.hpp"
 
-#include "mesh/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 
 #include "basis/lagrange_nodes.hpp"
 

@@ -1,4 +1,4 @@
-#include "mesh/input_file.hpp"
+#include "io/input_file.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace hofem::verification {
+namespace hofem {
 
 struct ManufacturedDisplacement {
   double scale = 1.0;
@@ -125,4 +125,4 @@ double mms_algebraic_tolerance(double h, int order);
 
 MmsResult run_mms(const MmsCase& c);
 
-}  // namespace hofem::verification
+}  // namespace hofem

@@ -1,4 +1,4 @@
-#include "mesh/mesh_partition.hpp"
+#include "distributed/mesh_partition.hpp"
 
 #include <fmt/format.h>
 

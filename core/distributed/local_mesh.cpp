@@ -1,6 +1,6 @@
-#include "mesh/local_mesh.hpp"
+#include "distributed/local_mesh.hpp"
 
-#include "mesh/mesh_partition.hpp"
+#include "distributed/mesh_partition.hpp"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "mesh/atomic_file.hpp"
+#include "io/atomic_file.hpp"
 
 #include <fmt/format.h>
 

@@ -1,0 +1,125 @@
+// A scene's meshes (the simulated one and the embedded geometry) built from
+// generators or .msh files and validated, and the node sets its boundary
+// entries select. Parsing the file is scene_parser.cpp's job; this file turns
+// the parsed description into meshes.
+#include "scene/scene_mesh.hpp"
+
+#include "io/gmsh_reader.hpp"
+#include "mesh/box_mesh.hpp"
+#include "mesh/mesh_quality.hpp"
+#include "mesh/mesh_reorient.hpp"
+#include "mesh/mesh_upgrade.hpp"
+#include "mesh/node_selection.hpp"
+#include "mesh/tube_mesh.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <stdexcept>
+
+namespace hofem {
+
+namespace {
+
+// The scene's mesh `key` after --reorient's flips (announced on stderr, never
+// silent) and validation; errors name the scene, the key and the element.
+Mesh validated(Mesh mesh, const Scene& s, const char* key) {
+  if (s.reorient) {
+    const std::vector<int> flipped = reorient_inverted_elements(mesh);
+    if (!flipped.empty())
+      fmt::print(stderr, "hofem: warning: {}: {}: --reorient renumbered {} inverted element(s), the first {}\n", s.file,
+                 key, flipped.size(), describe_element(mesh, flipped.front()));
+  }
+  try {
+    validate_mesh(mesh);
+  } catch (const MeshError& e) {
+    throw SceneError(fmt::format("{}: {}: {}", s.file, key, e.what()));
+  }
+  return mesh;
+}
+
+Mesh build_unchecked_scene_mesh(const Scene& s);
+Mesh build_unchecked_embedded_mesh(const Scene& s);
+
+}  // namespace
+
+Mesh build_scene_mesh(const Scene& s) { return validated(build_unchecked_scene_mesh(s), s, "mesh"); }
+
+Mesh build_embedded_mesh(const Scene& s) { return validated(build_unchecked_embedded_mesh(s), s, "embedded"); }
+
+namespace {
+
+Mesh build_unchecked_scene_mesh(const Scene& s) {
+  const SceneShape& m = s.mesh;
+  if (m.torus)
+    return hollow_torus_mesh(m.torus_major_radius, m.tube_r_in, m.tube_r_out, m.cells.x(), m.cells.y(), m.cells.z(),
+                             s.cell, s.order);
+  if (m.tube)
+    return hollow_cylinder_mesh(m.tube_r_in, m.tube_r_out, m.tube_height, m.cells.x(), m.cells.y(), m.cells.z(), s.cell,
+                                s.order);
+  if (m.file.empty())
+    return box_mesh(BoxSpec{{m.box_min.x(), m.box_min.y(), m.box_min.z()},
+                            {m.box_max.x(), m.box_max.y(), m.box_max.z()},
+                            {m.cells.x(), m.cells.y(), m.cells.z()}},
+                    s.cell, s.order);
+  Mesh mesh;
+  try {
+    mesh = read_gmsh(m.file);
+  } catch (const std::exception& e) {
+    throw SceneError(fmt::format("{}: mesh.file: {}", s.file, e.what()));
+  }
+  if (mesh.order == s.order) return mesh;
+  if (mesh.order != 1 || mesh.cell != CellType::Tetrahedron)
+    throw SceneError(fmt::format("{}: mesh.order = {}: the mesh '{}' has order {}; only P1 tetrahedra are upgraded",
+                                 s.file, s.order, m.file, mesh.order));
+  return upgrade_order(mesh, s.order);
+}
+
+Mesh build_unchecked_embedded_mesh(const Scene& s) {
+  if (!s.embedded) throw std::logic_error("build_embedded_mesh: the scene has no embedded geometry");
+  const SceneShape& g = s.embedded->shape;
+  if (g.torus)
+    return hollow_torus_mesh(g.torus_major_radius, g.tube_r_in, g.tube_r_out, g.cells.x(), g.cells.y(), g.cells.z(),
+                             CellType::Tetrahedron, 1);
+  if (g.tube)
+    return hollow_cylinder_mesh(g.tube_r_in, g.tube_r_out, g.tube_height, g.cells.x(), g.cells.y(), g.cells.z(),
+                                CellType::Tetrahedron, 1);
+  if (g.file.empty())
+    return box_tet_mesh(BoxSpec{{g.box_min.x(), g.box_min.y(), g.box_min.z()},
+                                {g.box_max.x(), g.box_max.y(), g.box_max.z()},
+                                {g.cells.x(), g.cells.y(), g.cells.z()}});
+  Mesh mesh;
+  try {
+    mesh = read_gmsh(g.file);
+  } catch (const std::exception& e) {
+    throw SceneError(fmt::format("{}: embedded.file: {}", s.file, e.what()));
+  }
+  if (mesh.cell != CellType::Tetrahedron)
+    throw SceneError(
+        fmt::format("{}: embedded.file: '{}' is not a tetrahedral mesh (the embedded geometry must be tetrahedra)",
+                    s.file, g.file));
+  return mesh;
+}
+
+}  // namespace
+
+std::vector<int> boundary_nodes(const Scene& s, const Mesh& mesh, size_t index) {
+  const SceneBoundary& b = s.boundary.at(index);
+  std::vector<int> nodes;
+  if (!b.set.empty()) {
+    const auto it = mesh.node_sets.find(b.set);
+    if (it == mesh.node_sets.end()) {
+      std::vector<std::string> names;
+      for (const auto& [k, v] : mesh.node_sets) names.push_back(k);
+      throw SceneError(fmt::format("{}: boundary[{}].nodes = '{}' is not a node set of the mesh (valid: {})", s.file,
+                                   index, b.set, fmt::join(names, ", ")));
+    }
+    nodes = it->second;
+  } else {
+    nodes = nodes_in_box(mesh, b.box->first, b.box->second);
+  }
+  if (nodes.empty()) throw SceneError(fmt::format("{}: boundary[{}].nodes selects no node of the mesh", s.file, index));
+  return nodes;
+}
+
+}  // namespace hofem
