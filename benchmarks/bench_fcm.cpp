@@ -5,11 +5,11 @@
 //    reason when it is absent) in a Tet10 box grid, and a generated half tube in
 //    a Hex20 grid (always available). Counters: points before / after, the
 //    reduction factor, CPU seconds of generation and of simplification (summed
-//    over threads), wall seconds. Seed: 5.86 M -> 70 k points (83x), 255 ms +
+//    over threads), wall seconds. Longva et al. 2020: 5.86 M -> 70 k points (83x), 255 ms +
 //    5.23 s on 28 cores.
 //  - BM_ElasticStep: one implicit Euler step (Newton, CG + Additive Schwarz) of
 //    the same body meshed conformingly (Tet10 tube) and embedded (FCM, Hex20
-//    grid): seconds per step and CG iterations per step (seed §6.5 compares FEM
+//    grid): seconds per step and CG iterations per step (Longva et al. 2020 §6.5 compare FEM
 //    and FCM per step and in CG iterations).
 #include "dynamics/dynamic_elasticity.hpp"
 #include "embedded/embedded_quadrature.hpp"
@@ -81,7 +81,7 @@ BENCHMARK(BM_FcmQuadrature_Tube)->Unit(benchmark::kMillisecond)->UseRealTime()->
 
 // One implicit Euler step of a tube sagging under gravity, clamped at z = 0:
 // arg 0 = conforming Tet10 tube (FEM), 1 = the fine tube embedded in a Hex20
-// grid (FCM). Both precondition CG by the seed's §6.5 rule: Schwarz blocks on cut
+// grid (FCM). Both precondition CG by the rule of Longva et al. 2020 §6.5: Schwarz blocks on cut
 // cells under a volume fraction of 0.5, Jacobi elsewhere (for FEM: Jacobi only).
 void BM_ElasticStep(benchmark::State& state) {
   const bool fcm = state.range(0) == 1;
@@ -99,7 +99,7 @@ void BM_ElasticStep(benchmark::State& state) {
     q = finite_cell_quadrature(mesh, mesh_tetrahedra(fine_tube()));
     stabilise_finite_cells(mesh, q);
     o.element_rules = q.element_rules();
-    o.preconditioner_blocks = schwarz_block_elements(q);  // cut cells under 0.5, as the seed's §6.5
+    o.preconditioner_blocks = schwarz_block_elements(q);  // cut cells under 0.5, as in Longva et al. 2020 §6.5
     clamped = mesh.node_set("zmin");
   } else {
     mesh = hollow_cylinder_mesh(0.5, 1.0, 2.0, 1, 12, 4, CellType::Tetrahedron, 2);

@@ -11,20 +11,20 @@
 // (the Newton inverse of §4.5 is needed only for curved cells, which are refused
 // with the element's index rather than integrated wrongly).
 //
-// Two rules per cell, as the seed does (§6 "Setup"):
+// Two rules per cell, as Longva et al. 2020 do (§6 "Setup"):
 //  - stiffness: strength m, simplified by the LP of §4.4 to at most C(m+3, 3)
 //    positive-weight points chosen among the clipped rule's points. Default: the
 //    degree that integrates the linear-elastic integrand grad N_i . grad N_j of an
 //    affine cell exactly - 2(p-1) on tets, raised to 2p as our standard Tet10
 //    assembly does for nonlinear materials; 2 (d-1) on hexes, d the basis' highest
-//    total degree: 4 for Hex8, 6 for Hex20. The seed uses 2 for Hex8, 4 for Hex20
+//    total degree: 4 for Hex8, 6 for Hex20. Longva et al. 2020 use 2 for Hex8, 4 for Hex20
 //    and 3 for Tet10 (§6), which under-integrates the stiffness of cut hexes
 //    (total-degree rules cannot use the tensor structure of Gauss rules): we
 //    prefer exactness at the price of 35 instead of 10 (Hex8) and 84 instead of
 //    35 (Hex20) points per cut cell;
 //  - mass and body loads: a higher strength (default 2 x the basis' highest total
-//    degree: exact for N_i N_j on an affine cell), not simplified by default (the
-//    seed: "only needed once").
+//    degree: exact for N_i N_j on an affine cell), not simplified by default
+//    (Longva et al. 2020: "only needed once").
 // Uncut cells (volume fraction 1) keep the standard rules (null entries).
 #include "basis/basis_tabulation.hpp"
 #include "embedded/element_rules.hpp"
@@ -103,7 +103,7 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
 /// simplification (the raw §4.5 rules).
 CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Tetrahedron> geometry, int degree);
 
-/// Second seed §5.3, applied to the rules of finite_cell_quadrature:
+/// Longva et al. 2020 §5.3, applied to the rules of finite_cell_quadrature:
 ///  - cells whose volume fraction is positive but below drop_fraction are
 ///    dropped (their rules emptied; listed in `dropped`): a sliver's stiffness is
 ///    too small to control its DOFs (its embedded points are extrapolated from the
@@ -129,10 +129,10 @@ struct FiniteCellStabilisation {
   /// integrand - the cut part plus `stabilisation` times the full cell - exactly
   /// to degree m, which covers the linear-elastic stiffness grad N_i . grad N_j
   /// of an affine cell (degree 2(p-1) <= m): that stiffness, and the lower bound
-  /// on its eigenvalues that the stabilisation exists for, are unchanged. The
-  /// seed adds the Gauss points beside its simplified rule (Longva et al. 2020
-  /// §5.3) and does not say whether it folds them; the fold is ours (measured in
-  /// the slingshot study: assembly is most of a finite-cell step). A cell whose
+  /// on its eigenvalues that the stabilisation exists for, are unchanged. Longva
+  /// et al. 2020 §5.3 add the Gauss points beside the simplified rule and do not
+  /// say whether they fold them; the fold is ours (measured in the slingshot
+  /// study: assembly is most of a finite-cell step). A cell whose
   /// LP fails keeps the unfolded rule. < 0: no fold.
   int simplify_degree = -1;
 };
@@ -147,7 +147,7 @@ StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& c
 
 /// The cells the Additive-Schwarz preconditioner treats with blocks (Longva et al. 2020
 /// §5.2): cut cells (0 < fraction < 1, not dropped) with a volume fraction below
-/// `threshold` (the seed: 0.5-0.7 work well; 0.5 in its §6.5). Ascending.
+/// `threshold` (Longva et al. 2020: 0.5-0.7 work well; 0.5 in its §6.5). Ascending.
 std::vector<int> schwarz_block_elements(const CellQuadrature& cells, double threshold = 0.5);
 
 

@@ -33,7 +33,7 @@ void validate(const Eigen::MatrixXd& points, const Eigen::VectorXd& weights, int
           fmt::format("simplify_quadrature: weights must be finite and >= 0, weights[{}] = {}", j, weights[j]));
 }
 
-// P (M x N) of seed eq. 7 in the basis of eq. 9: T_a(x) T_b(y) T_c(z), a + b + c <= m,
+// P (M x N) of Longva et al. 2020 eq. 7 in the basis of eq. 9: T_a(x) T_b(y) T_c(z), a + b + c <= m,
 // each coordinate mapped from the points' bounding box onto [-1, 1] (§4.4.3: a
 // small cluster of points would otherwise see nearly dependent polynomials). The
 // map t = 2 (x - lo) / (hi - lo) - 1 stays in [-1, 1] in floating point (rounding
@@ -81,7 +81,7 @@ Eigen::MatrixXd right_singular_vectors(const Eigen::MatrixXd& P, double rank_tol
   return qr.householderQ() * V;
 }
 
-// Seed eq. 10 by GLPK's simplex with a zero objective: any basic feasible point
+// Longva et al. 2020 eq. 10 by GLPK's simplex with a zero objective: any basic feasible point
 // has at most r non-zeros. Returns the basic columns and their values (a basic
 // value may be 0 or, within GLPK's tolerance, slightly negative), or nothing
 // (with `error` set) when GLPK does not succeed.

@@ -4,7 +4,7 @@
 // positive weights that integrate every polynomial of total degree <= m exactly
 // as the input rule does (up to rounding).
 //
-// Method (seed eq. 7-10): P (M x N) holds a tensor Chebyshev basis on the
+// Method (Longva et al. 2020 eq. 7-10): P (M x N) holds a tensor Chebyshev basis on the
 // points' bounding box evaluated at the points; its SVD P = U S V^T gives the
 // equivalent, perfectly conditioned constraints V_r^T w = V_r^T w0, w >= 0, whose
 // basic feasible solutions have at most r = rank P <= M non-zeros.
@@ -16,7 +16,7 @@
 //    them is the refinement. Measured on the cut cells of the Fig. 10 half ball
 //    (Hex20, m = 6, 136 cells with N ~ 3500): 31 ms per cell against the simplex's
 //    112 ms, at most 84 points, moment residual <= 1.7e-15 (Hex8, m = 4: 3.7 against
-//    16.4 ms). The seed solves eq. 10 as an LP; any basic feasible point is what it
+//    16.4 ms). Longva et al. 2020 solve eq. 10 as an LP; any basic feasible point is what it
 //    asks for, and this is one, found faster.
 //  - simplex: GLPK's dual simplex with a zero objective, then the weights on the
 //    basic columns recomputed by least squares against the input's moments summed

@@ -6,8 +6,8 @@
 // an axis-aligned or affine hex, 4 for a tet), and the intersection of a tet with
 // one half-space is a tet, a prism (split into 3 tets) or nothing. Clipping the
 // pieces against each plane in turn therefore yields the intersection already
-// split into tetrahedra, so no polyhedron with polygon faces is ever built (the
-// seed clips polyhedra and then tetrahedralises; the result is the same region).
+// split into tetrahedra, so no polyhedron with polygon faces is ever built (Longva et al.
+// 2020 clip polyhedra and then tetrahedralises; the result is the same region).
 #include <Eigen/Core>
 
 #include <span>

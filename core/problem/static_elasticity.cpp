@@ -47,7 +47,7 @@ StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, s
     throw std::invalid_argument(fmt::format("static problem: external_load needs {} finite entries (got {})",
                                             3 * mesh.num_nodes(), external.size()));
   if (options_.distributed) {
-    // Issue 7: from here on this rank sees only its piece of the mesh.
+    // From here on this rank sees only its piece of the mesh.
     ensure_hypre();
     validate(options_.distributed_solver);
     dist_ = std::make_unique<DistributedMesh>(distribute_mesh(MPI_COMM_WORLD, mesh));

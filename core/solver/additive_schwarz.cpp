@@ -25,7 +25,7 @@
 // Hex8 520/250, Hex20 800/420 (one SpMV: 260, 540, 1090, 480, 1120 us). S stores
 // sum n_K^2 = 2.3, 1.7, 2.5, 1.5, 2.4 M doubles, 6x / 2.4x / 1.7x / 2.2x / 1.6x nnz(A).
 // - On uncut meshes one-level element Schwarz (no coarse space) is Jacobi-like:
-//   0.6-1.1x Jacobi's iterations, IC(0) needs 2-4x fewer. Its purpose (seed §5)
+//   0.6-1.1x Jacobi's iterations, IC(0) needs 2-4x fewer. Its purpose (Longva et al. 2020 §5)
 //   is the ill-conditioning of small cut cells, which the diagonal leaves for p >= 2.
 // - Setup: the Cholesky fast path is 2.5-5x faster than eigen-decomposing every
 //   block, with the same S_K (same iterations).

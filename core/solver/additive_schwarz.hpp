@@ -1,6 +1,6 @@
 #pragma once
-// Element-block Additive-Schwarz preconditioner of Longva et al. 2020 (second
-// seed, §5.2, eq. 13-14), after de Prenter et al. 2017/2019:
+// Element-block Additive-Schwarz preconditioner of Longva et al. 2020
+// (§5.2, eq. 13-14), after de Prenter et al. 2017/2019:
 //
 //   S = sum_K R_K^T C_K^+ R_K,   C_K = R_K C R_K^T                      (eq. 13)
 //

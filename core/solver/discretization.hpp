@@ -15,8 +15,8 @@ struct Discretization {
   const Mesh* mesh = nullptr;
   const DofMap* dofs = nullptr;
   /// Elements that need a block of their own in block preconditioners (the
-  /// finite cell method's cut cells under a volume-fraction threshold, second
-  /// seed §5.2); null: every element. Non-null and empty: none (diagonal only).
+  /// finite cell method's cut cells under a volume-fraction threshold, Longva
+  /// et al. 2020 §5.2); null: every element. Non-null and empty: none (diagonal only).
   const std::vector<int>* block_elements = nullptr;
   bool valid() const { return mesh != nullptr && dofs != nullptr; }
 };

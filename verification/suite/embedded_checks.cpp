@@ -28,7 +28,7 @@ const Eigen::Matrix3d kRotation = Eigen::AngleAxisd(0.9, Eigen::Vector3d(1, -2, 
 // error is on the scale of the integrand (no cancellation).
 constexpr double kOffset = 0.2;
 
-// Strengths of the seed's figure. m = 10 is checked on the one-cell case only:
+// Strengths of Longva et al.'s figure. m = 10 is checked on the one-cell case only:
 // an octant rule at m = 10 has ~1e4 points and its LP takes seconds per cell
 // (measured time reported), too slow for the fast suite's 8 cells.
 constexpr int kDegrees[] = {1, 2, 3, 5, 10};
@@ -184,7 +184,7 @@ void add_embedded_quadrature_checks(Report& report) {
       report.check(g, label + ": simplified max rel. error", r.max_simplified_error(), kExactness, Compare::AtMost,
                    "as for the initial rule: the simplification keeps every moment of degree <= m to rounding");
       report.check(g, label + ": points per cell after", r.max_points_after_per_cell, r.basis_size, Compare::AtMost,
-                   "a basic feasible point of the LP has at most M = C(m+3,3) non-zeros (seed §4.4.2)");
+                   "a basic feasible point of the LP has at most M = C(m+3,3) non-zeros (Longva et al. 2020 §4.4.2)");
       report.check(g, label + ": cells not simplified", r.failures, 0, Compare::AtMost,
                    "every cell with N > M is simplified (no LP failure, residual accepted)");
       if (method == SimplificationMethod::ActiveSet)

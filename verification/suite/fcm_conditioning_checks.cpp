@@ -27,11 +27,11 @@ namespace hofem::verification {
 namespace {
 
 // ---------------------------------------------------------------------------
-// The experiment of seed §5.4 and its parameters.
+// The experiment of Longva et al. 2020 §5.4 and its parameters.
 
 constexpr const char* kGroup = "embedded.fig5";
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-// Seed §5.4: Stable Neo-Hookean, E = 3e6 Pa, nu = 0.4, dt = 1/60 s. The seed gives
+// Longva et al. 2020 §5.4: Stable Neo-Hookean, E = 3e6 Pa, nu = 0.4, dt = 1/60 s. It gives
 // no density; 1000 kg/m^3 is that of soft tissue / rubber-like solids, the kind of
 // material E = 3 MPa models. With it dt^2 E / (rho h^2) ~ 7.5 at the cell size h = 1/3
 // (30 at Tet10's node spacing): stiffness dominates but mass matters, as in a typical
@@ -39,9 +39,9 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // ~10 % negative eigenvalues; each row counts them).
 constexpr double kDensity = 1000.0;
 constexpr double kDt = 1.0 / 60.0;
-constexpr double kStabilisation = 1e-6;    // seed §5.3/§5.4
-constexpr double kSchwarzFraction = 0.5;   // seed §5.2: blocks on cut cells below 0.5-0.7
-constexpr double kSchwarzEpsilon = 1e-13;  // seed eq. 14
+constexpr double kStabilisation = 1e-6;    // Longva et al. 2020 §5.3/§5.4
+constexpr double kSchwarzFraction = 0.5;   // Longva et al. 2020 §5.2: blocks on cut cells below 0.5-0.7
+constexpr double kSchwarzEpsilon = 1e-13;  // Longva et al. 2020 eq. 14
 
 /// Background grid [0, 4/3]^3 with 4 cells a side (cell size 1/3).
 Mesh background_mesh(int order) {
@@ -163,7 +163,7 @@ Spectrum schwarz_spectrum(const SparseMatrix& A, const Mesh& mesh, const DofMap&
   }
   const Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
   if (llt.info() != Eigen::Success) {
-    // Seed §5.3: without stabilisation the blocks become numerically singular and
+    // Longva et al. 2020 §5.3: without stabilisation the blocks become numerically singular and
     // eq. 14 replaces their smallest eigenvalues by eps / lambda_max, which rounding
     // swamps: S is then not numerically SPD and S A has no computable spectrum.
     const Spectrum of_S = symmetric_spectrum(S);
@@ -374,7 +374,7 @@ void check_sweep(Report& report, const std::vector<CaseResult>& results) {
             worst.eps, first_full->eps, reference, uncut.stabilised[kSchwarz].kappa, first_full->eps));
   }
 
-  // (b) Tet10 without stabilisation: the ill-conditioning is real (seed §5.1).
+  // (b) Tet10 without stabilisation: the ill-conditioning is real (Longva et al. 2020 §5.1).
   if (uncut.order >= 2) {
     for (Preconditioner p : {kNone, kJacobi}) {
       if (!uncut.plain[p].computed || !smallest.plain[p].computed) continue;
@@ -382,7 +382,7 @@ void check_sweep(Report& report, const std::vector<CaseResult>& results) {
                    fmt::format("{} {} unstabilised: kappa(eps={:g}) / kappa(eps=1)", cell, kPreconditionerNames[p],
                                smallest.eps),
                    smallest.plain[p].kappa / uncut.plain[p].kappa, 1.0 / smallest.eps, Compare::AtLeast,
-                   fmt::format("seed §5.1: on a cut of width eps the scaled quadratic basis functions are nearly "
+                   fmt::format("Longva et al. 2020 §5.1: on a cut of width eps the scaled quadratic basis functions are nearly "
                                "dependent (on [0, eps], N1 + 4 N2 = 4 x^2 is ~eps smaller than N1 and N2), so the "
                                "smallest eigenvalue of the Jacobi-scaled matrix falls like eps^2 and kappa grows "
                                "like eps^-2 (faster unscaled); requiring 1/eps = {:g}, half that exponent, "
@@ -391,7 +391,7 @@ void check_sweep(Report& report, const std::vector<CaseResult>& results) {
     }
   }
 
-  // (c) Tet4: Jacobi alone suffices without stabilisation (seed §5.3-5.4).
+  // (c) Tet4: Jacobi alone suffices without stabilisation (Longva et al. 2020 §5.3-5.4).
   if (uncut.order == 1 && computed(results, false, kJacobi)) {
     const double jacobi = uncut.plain[kJacobi].kappa;
     const Worst worst = max_kappa(results, false, kJacobi);
@@ -402,7 +402,7 @@ void check_sweep(Report& report, const std::vector<CaseResult>& results) {
         fmt::format(
             "max at eps={:g}; kappa(eps=1) = {:.3e} (the same preconditioner at every eps). On a cut of width eps "
             "the linear basis functions are ~1 and ~x/eps-like: diagonal scaling leaves them well "
-            "conditioned for any eps (seed §5.1), so only the O(1) changes of check (a) remain; "
+            "conditioned for any eps (Longva et al. 2020 §5.1), so only the O(1) changes of check (a) remain; "
             "10 as there",
             worst.eps, jacobi));
   }

@@ -21,7 +21,7 @@
 //  - Additive Schwarz with stabilisation stays bounded as eps -> 0 (max over the
 //    sweep within 10x of its value at the first eps where every cut cell is a block),
 //  - without stabilisation Tet10's kappa (identity and Jacobi) grows at least like 1/eps,
-//  - Tet4 with Jacobi alone stays bounded without stabilisation (the seed's remark).
+//  - Tet4 with Jacobi alone stays bounded without stabilisation (Longva et al.'s remark).
 #include <string>
 
 #include "report.hpp"

@@ -1,8 +1,8 @@
-// Second seed Fig. 10 (§6.6): static L2 convergence of the finite cell method
+// Longva et al. 2020 Fig. 10 (§6.6): static L2 convergence of the finite cell method
 // on a hemisphere-like body in hex grids, against conforming FEM on the same
 // grid, which cannot follow the curved boundary.
 //
-// Where the seed measures against a fine boundary-conforming reference, we use a
+// Where Longva et al. 2020 measure against a fine boundary-conforming reference, we use a
 // manufactured solution, so the error is exact: u* of manufactured_solution.hpp
 // (linear elasticity, E = 1, nu = 0.3), body force f = -Div P(u*), u = u* on the
 // background nodes of the flat face z = 0 (a grid plane), and on the curved
@@ -210,7 +210,7 @@ void add_fcm_convergence_checks(Report& report, const std::string& level) {
     const int optimal = series.order + 1;
     finest[{series.order, series.staircase}] = error[last];
     if (!series.staircase) {
-      // Optimal L2 rate p + 1 (Hex8 2, Hex20 3; the seed's Fig. 10) on each of the
+      // Optimal L2 rate p + 1 (Hex8 2, Hex20 3; Longva et al.'s Fig. 10) on each of the
       // last two pairs of grids, less 0.2 / 0.3 for what is left of the
       // pre-asymptotic range (measured: Hex8 1.96, 1.99; Hex20 2.98, 2.98).
       const double bound = series.order == 1 ? 1.8 : 2.7;
@@ -229,7 +229,7 @@ void add_fcm_convergence_checks(Report& report, const std::string& level) {
     const double ratio = error[last] / finest[{series.order, false}];
     // The staircase body differs from the true one by O(h) in volume, so on the
     // finest grid it is less accurate than FCM; for Hex20, whose FCM error is
-    // O(h^3), by an order of magnitude (the seed: "dramatically reduced").
+    // O(h^3), by an order of magnitude (Longva et al. 2020: "dramatically reduced").
     report.check(group, fmt::format("{} / FCM L2 error on the finest grid", series.name), ratio,
                  series.order == 2 ? 10.0 : 1.0, Compare::AtLeast, "the geometry is not resolved");
     // Its rate is held below O(h^3) only where there is an asymptotic range to

@@ -1,4 +1,4 @@
-// Second seed Fig. 6 (§6.1): a body spinning about its centre of mass. The
+// Longva et al. 2020 Fig. 6 (§6.1): a body spinning about its centre of mass. The
 // finite cell method integrates the exact (embedded) geometry, so even one
 // coarse background cell has the body's mass and centre of mass; a coarse
 // boundary-conforming mesh approximates the geometry and with it the centre of
@@ -143,7 +143,7 @@ void add_fcm_rigid_motion_checks(Report& report) {
   report.check(group, "coarse FEM drift / predicted omega |c_coarse - c_fine| t", drift / predicted, 0.99,
                Compare::AtLeast, "momentum m omega x (c_coarse - c_fine) is conserved: the drift is that exactly");
   report.check(group, "coarse FEM centre-of-mass drift / size", drift / size, 1e-3, Compare::AtLeast,
-               "the coarse geometry's error is visible (the seed's Fig. 6 top right)");
+               "the coarse geometry's error is visible (Longva et al.'s Fig. 6 top right)");
 
   struct Case {
     const char* name;
@@ -175,7 +175,7 @@ void add_fcm_rigid_motion_checks(Report& report) {
     // conforming reference's Newton-level drift.
     report.check(group, fmt::format("{}: centre-of-mass drift / size", k.name), (s.c_end - s.c0).norm() / size,
                  kOmega * t_end * mass_tol + 1e-6, Compare::AtMost,
-                 "zero momentum up to the mass rule's error (the seed: FCM keeps the centre of mass)");
+                 "zero momentum up to the mass rule's error (Longva et al. 2020: FCM keeps the centre of mass)");
     report.check(group, fmt::format("{}: all steps converged", k.name), s.ok ? 1.0 : 0.0, 1.0, Compare::AtLeast);
   }
 }

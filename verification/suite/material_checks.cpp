@@ -180,7 +180,7 @@ void add_lame_checks(Report& report) {
       {1.0, -0.5, 1.0, -0.5, "mu = 1/(2 * 0.5) = 1, lambda = -0.5/(0.5 * 2) = -1/2"},
       // Errata check for Longva et al. 2020: its published code converted
       // (E, nu) to Lame parameters wrongly; every finite-cell experiment here uses
-      // this tested conversion, so the seed's own materials are checked too:
+      // this tested conversion, so Longva et al.'s own materials are checked too:
       // Fig. 5 and the cylinder (E = 3e6, nu = 0.4), the armadillo (5e5, 0.4).
       {3e6, 0.4, 1071428.5714285714, 4285714.2857142857,
        "Longva et al. 2020 Fig. 5: mu = 3e6/2.8 = 7.5e6/7, lambda = 1.2e6/0.28 = 3e7/7"},

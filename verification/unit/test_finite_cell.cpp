@@ -87,7 +87,7 @@ TEST(FiniteCell, PartlyCoveredGridIntegratesTheGeometryOnly) {
 namespace hofem {
 namespace {
 
-// Second seed §5.3: a sliver cell (fraction below 1e-4) is dropped, and its
+// Longva et al. 2020 §5.3: a sliver cell (fraction below 1e-4) is dropped, and its
 // outer nodes leave the system.
 TEST(FiniteCell, StabilisationDropsSlivers) {
   const Mesh background = box_mesh(BoxSpec{{0, 0, 0}, {2, 1, 1}, {2, 1, 1}}, CellType::Hexahedron, 1);
@@ -278,7 +278,7 @@ TEST(FiniteCell, SimplifiedCutCellRulesKeepTheStiffnessAndMass) {
 // Mass rules integrate the embedded geometry's inertia: with sum_i N_i = 1 and
 // sum_j N_j X_j = X on affine cells, 1^T M 1 is the mass and 1^T M X its first
 // moment, whatever the background, so the centre of mass is the geometry's
-// (exact to rounding: 1e-13), as seed Fig. 6 needs.
+// (exact to rounding: 1e-13), as Longva et al. 2020 Fig. 6 needs.
 TEST(FiniteCell, MassRulesGiveTheGeometrysMassAndCentreOfMass) {
   const Mesh geometry = box_mesh(BoxSpec{{0.1, 0.2, 0.05}, {0.8, 0.5, 0.3}, {3, 2, 2}}, CellType::Tetrahedron, 1);
   const Eigen::Vector3d centre(0.45, 0.35, 0.175);
@@ -393,7 +393,7 @@ TEST(FiniteCell, BoundarySurfaceIsClosedAndOutward) {
 namespace hofem {
 namespace {
 
-// Second seed §5.2: blocks only for cut cells under a volume fraction of 0.5,
+// Longva et al. 2020 §5.2: blocks only for cut cells under a volume fraction of 0.5,
 // Jacobi elsewhere, passed through the discretization, and CG / MINRES with it
 // solve the stabilised finite-cell problem to the direct solver's answer
 // (1e-6 relative: the Krylov stopping rule is 1e-10 on the residual, times the

@@ -184,7 +184,7 @@ TEST(DistributedSystem, ManufacturedSolutionMatchesSerial) {
   EXPECT_EQ(distributed.dofs, serial.dofs);
 }
 
-// Issue 7: the implicit integrator runs unchanged on top of the distributed
+// The implicit integrator runs unchanged on top of the distributed
 // path. A Neo-Hookean P2 beam clamped at x = 0 sags under gravity for 10 implicit
 // Euler steps (consistent mass): the distributed trajectory (elastic terms over
 // the ranks, hypre AMG-PCG at 1e-12) follows the serial CHOLMOD one with the same
