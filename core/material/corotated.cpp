@@ -74,18 +74,4 @@ double Corotated::evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const {
   return lame_.mu * (pd.sigma.array() - 1.0).square().sum() + 0.5 * lame_.lambda * tr * tr;
 }
 
-double Corotated::energy(const Mat3& F) const { return Corotated::evaluate(F, nullptr, nullptr); }
-
-Mat3 Corotated::stress(const Mat3& F) const {
-  Mat3 P;
-  Corotated::evaluate(F, &P, nullptr);
-  return P;
-}
-
-Mat9 Corotated::stress_derivative(const Mat3& F) const {
-  Mat9 H;
-  Corotated::evaluate(F, nullptr, &H);
-  return H;
-}
-
 }  // namespace hofem

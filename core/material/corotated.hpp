@@ -47,9 +47,6 @@ class Corotated final : public Material {
  public:
   explicit Corotated(LameParameters lame) : Material(lame) {}
   std::string_view name() const override { return "corotated"; }
-  double energy(const Mat3& F) const override;
-  Mat3 stress(const Mat3& F) const override;
-  Mat9 stress_derivative(const Mat3& F) const override;
   double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const override;
   bool needs_polar_decomposition() const override { return true; }
 };

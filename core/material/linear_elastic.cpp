@@ -22,17 +22,4 @@ double LinearElastic::evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const {
   return lame_.mu * eps.squaredNorm() + 0.5 * lame_.lambda * tr * tr;
 }
 
-double LinearElastic::energy(const Mat3& F) const { return LinearElastic::evaluate(F, nullptr, nullptr); }
-
-Mat3 LinearElastic::stress(const Mat3& F) const {
-  Mat3 P;
-  LinearElastic::evaluate(F, &P, nullptr);
-  return P;
-}
-
-Mat9 LinearElastic::stress_derivative(const Mat3& F) const {
-  (void)F;
-  return tangent_;
-}
-
 }  // namespace hofem

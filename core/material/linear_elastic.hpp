@@ -15,9 +15,6 @@ class LinearElastic final : public Material {
  public:
   explicit LinearElastic(LameParameters lame);
   std::string_view name() const override { return "linear"; }
-  double energy(const Mat3& F) const override;
-  Mat3 stress(const Mat3& F) const override;
-  Mat9 stress_derivative(const Mat3& F) const override;
   double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const override;
   /// mu (d_ik d_jl + d_il d_jk) + lambda d_ij d_kl is PSD for mu > 0 and
   /// 3 lambda + 2 mu > 0, which from_young_poisson guarantees (E > 0, -1 < nu < 0.5).

@@ -39,23 +39,26 @@ class Material {
   virtual std::string_view name() const = 0;
   /// Whether psi is defined at F (false e.g. for Neo-Hookean with det F <= 0).
   virtual bool defined_at(const Mat3& F) const { (void)F; return true; }
-  /// psi(F); +infinity where the material is not defined (so a line search backs off).
-  virtual double energy(const Mat3& F) const = 0;
-  /// P(F); throws MaterialDomainError where not defined.
-  virtual Mat3 stress(const Mat3& F) const = 0;
-  /// dP/dF (9x9, see the flattening convention); throws MaterialDomainError where not defined.
-  virtual Mat9 stress_derivative(const Mat3& F) const = 0;
   /// psi(F), plus P(F) into *P and dP/dF into *dPdF where those are non-null, from
   /// one evaluation that shares the work (one polar decomposition for corotated, one
-  /// inverse for Neo-Hookean): the per-quadrature-point call of Newton's assembly.
-  /// Results are bit-identical to energy(), stress() and stress_derivative(). Where
-  /// the material is not defined, returns +infinity if only psi is requested and
-  /// throws MaterialDomainError (like stress()) if P or dP/dF is.
-  virtual double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const {
-    const double psi = energy(F);
-    if (P) *P = stress(F);
-    if (dPdF) *dPdF = stress_derivative(F);
-    return psi;
+  /// inverse for Neo-Hookean): the per-quadrature-point call of Newton's assembly,
+  /// and the one function a material implements. Where the material is not
+  /// defined, returns +infinity if only psi is requested and throws
+  /// MaterialDomainError (naming the material and det F) if P or dP/dF is.
+  virtual double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const = 0;
+  /// psi(F) alone; +infinity where the material is not defined (so a line search backs off).
+  double energy(const Mat3& F) const { return evaluate(F, nullptr, nullptr); }
+  /// P(F) alone; throws MaterialDomainError where not defined.
+  Mat3 stress(const Mat3& F) const {
+    Mat3 P;
+    evaluate(F, &P, nullptr);
+    return P;
+  }
+  /// dP/dF alone (9x9, see the flattening convention); throws MaterialDomainError where not defined.
+  Mat9 stress_derivative(const Mat3& F) const {
+    Mat9 dPdF;
+    evaluate(F, nullptr, &dPdF);
+    return dPdF;
   }
   /// Whether dP/dF is the same positive semi-definite matrix at every F (linear
   /// elasticity): the energy is then quadratic in the displacement, one linear

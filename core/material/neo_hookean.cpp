@@ -39,18 +39,4 @@ double NeoHookean::evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const {
   return 0.5 * lame_.mu * (F.squaredNorm() - 3.0) - lame_.mu * logJ + 0.5 * lame_.lambda * logJ * logJ;
 }
 
-double NeoHookean::energy(const Mat3& F) const { return NeoHookean::evaluate(F, nullptr, nullptr); }
-
-Mat3 NeoHookean::stress(const Mat3& F) const {
-  Mat3 P;
-  NeoHookean::evaluate(F, &P, nullptr);
-  return P;
-}
-
-Mat9 NeoHookean::stress_derivative(const Mat3& F) const {
-  Mat9 H;
-  NeoHookean::evaluate(F, nullptr, &H);
-  return H;
-}
-
 }  // namespace hofem

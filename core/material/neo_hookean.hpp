@@ -16,9 +16,6 @@ class NeoHookean final : public Material {
   explicit NeoHookean(LameParameters lame) : Material(lame) {}
   std::string_view name() const override { return "neohookean"; }
   bool defined_at(const Mat3& F) const override;
-  double energy(const Mat3& F) const override;
-  Mat3 stress(const Mat3& F) const override;
-  Mat9 stress_derivative(const Mat3& F) const override;
   double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const override;
 };
 

@@ -37,18 +37,4 @@ double StVenantKirchhoff::evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const {
   return lame_.mu * E.squaredNorm() + 0.5 * lame_.lambda * tr * tr;
 }
 
-double StVenantKirchhoff::energy(const Mat3& F) const { return StVenantKirchhoff::evaluate(F, nullptr, nullptr); }
-
-Mat3 StVenantKirchhoff::stress(const Mat3& F) const {
-  Mat3 P;
-  StVenantKirchhoff::evaluate(F, &P, nullptr);
-  return P;
-}
-
-Mat9 StVenantKirchhoff::stress_derivative(const Mat3& F) const {
-  Mat9 H;
-  StVenantKirchhoff::evaluate(F, nullptr, &H);
-  return H;
-}
-
 }  // namespace hofem

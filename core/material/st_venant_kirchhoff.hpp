@@ -15,9 +15,6 @@ class StVenantKirchhoff final : public Material {
  public:
   explicit StVenantKirchhoff(LameParameters lame) : Material(lame) {}
   std::string_view name() const override { return "stvk"; }
-  double energy(const Mat3& F) const override;
-  Mat3 stress(const Mat3& F) const override;
-  Mat9 stress_derivative(const Mat3& F) const override;
   double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const override;
 };
 

@@ -35,18 +35,4 @@ double StableNeoHookean::evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const {
   return 0.5 * mu_ * (Ic - 3.0) + 0.5 * lambda_ * dJ * dJ - 0.5 * mu_ * std::log1p(Ic);
 }
 
-double StableNeoHookean::energy(const Mat3& F) const { return StableNeoHookean::evaluate(F, nullptr, nullptr); }
-
-Mat3 StableNeoHookean::stress(const Mat3& F) const {
-  Mat3 P;
-  StableNeoHookean::evaluate(F, &P, nullptr);
-  return P;
-}
-
-Mat9 StableNeoHookean::stress_derivative(const Mat3& F) const {
-  Mat9 H;
-  StableNeoHookean::evaluate(F, nullptr, &H);
-  return H;
-}
-
 }  // namespace hofem
