@@ -108,7 +108,7 @@ std::unique_ptr<LinearSystem> build_system(const SystemKey& key) {
   if (mms) {
     hofem::MmsCase c;
     c.problem = "linear";
-    c.linear_solver = "cholmod";  // the default options (this builds the system only)
+    c.solver = SolverSpec::parse("cholmod");  // the default options (this builds the system only)
     c.cell = key.cell;
     c.order = key.order;
     c.n = key.n;

@@ -90,7 +90,7 @@ void BM_ElasticStep(benchmark::State& state) {
   o.integrator = Integrator::ImplicitEuler;
   o.dt = 1.0 / 60.0;
   o.gravity = Eigen::Vector3d(9.81, 0.0, 0.0);
-  o.linear_solver = "cg+schwarz";
+  o.solver = SolverSpec::parse("cg+schwarz");
   Mesh mesh;
   std::vector<int> clamped;
   CellQuadrature q;

@@ -28,13 +28,14 @@ std::string fmt_unknowns(double n) {
   return o.str();
 }
 
+// The solver of a combination: the name before its Newton variant ("cg+schwarz/ew").
+SolverSpec combo_solver(const std::string& combo) { return SolverSpec::parse(combo.substr(0, combo.find('/'))); }
+
 // What a combination is made of, for the budget guard: its preconditioner
 // ("cg+schwarz/ew" -> "schwarz"), or the solver itself for direct solvers and hypre.
 std::string component(const std::string& combo) {
-  const std::string solver = combo.substr(0, combo.find('/'));
-  const size_t plus = solver.find('+');
-  if (plus == std::string::npos || solver.rfind("hypre", 0) == 0) return solver;
-  return solver.substr(plus + 1);
+  const SolverSpec s = combo_solver(combo);
+  return s.is_krylov() ? s.preconditioner : s.name();
 }
 
 struct SlowRun {
@@ -79,9 +80,7 @@ Prediction predict(const std::vector<RunRecord>& smaller, double unknowns, bool 
   return p;
 }
 
-bool is_direct_combo(const std::string& combo) {
-  return combo == "cholmod" || combo == "umfpack" || combo == "eigen-ldlt";
-}
+bool is_direct_combo(const std::string& combo) { return combo_solver(combo).is_direct(); }
 
 // Runs of `combo` in a series below `level`, nearest first; a failed one ends the list.
 std::vector<RunRecord> smaller_runs(const std::string& series, int level, const std::string& combo, bool* failed) {
@@ -144,8 +143,8 @@ std::optional<std::string> sweep_skip_reason(const std::string& series, int leve
     // (at ~1e3 unknowns the methods differ by milliseconds of noise) and the
     // cheaper recurrence wins: CG, then MINRES, CR, GMRES.
     auto method_cost = [](const std::string& name) {
-      const std::string m = name.substr(0, name.find('+'));
-      return m == "cg" ? 0 : m == "minres" ? 1 : m == "cr" ? 2 : m == "gmres" ? 3 : 0;
+      const std::optional<SolverMethod> m = combo_solver(name).method;
+      return m == SolverMethod::Minres ? 1 : m == SolverMethod::Cr ? 2 : m == SolverMethod::Gmres ? 3 : 0;
     };
     std::map<std::string, std::pair<double, std::string>> best;  // component -> (time, combo)
     for (const auto& [name, r] : records()[series][level - 1]) {

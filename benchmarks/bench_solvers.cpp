@@ -44,24 +44,21 @@ constexpr int kHistoryLevels = 1;            // residual histories are kept up t
 // needs more is reported as failed instead of taking minutes.
 constexpr int kMaxIterations = 3000;
 std::unique_ptr<LinearSolver> make_solver(const std::string& name) {
-  const size_t plus = name.find('+');
-  const std::string method = name.substr(0, plus);
-  if (plus != std::string::npos && (method == "cg" || method == "cr" || method == "minres" || method == "gmres")) {
-    KrylovOptions options;
-    options.rtol = kRelativeTolerance;
-    options.max_iterations = kMaxIterations;
-    return std::make_unique<KrylovSolver>(method, name.substr(plus + 1), options);
-  }
-  return make_linear_solver(name);
+  SolverSpec spec = SolverSpec::parse(name);
+  spec.krylov.rtol = kRelativeTolerance;
+  spec.krylov.max_iterations = kMaxIterations;
+  return make_linear_solver(spec);
 }
 
-bool is_direct(const std::string& name) { return name == "cholmod" || name == "umfpack" || name == "eigen-ldlt"; }
+bool is_direct(const std::string& name) { return SolverSpec::parse(name).is_direct(); }
 
 // Methods that need a positive-definite matrix: CG (ours and hypre's) and
 // Cholesky; Eigen's LDL^T works on indefinite matrices but, by the
 // LinearSolver contract, reports them as not positive definite.
 bool needs_spd(const std::string& name) {
-  return name == "cholmod" || name == "eigen-ldlt" || name == "hypre-pcg+amg" || name.rfind("cg+", 0) == 0;
+  const std::optional<SolverMethod> m = SolverSpec::parse(name).method;
+  return m == SolverMethod::Cholmod || m == SolverMethod::EigenLdlt || m == SolverMethod::HyprePcg ||
+         m == SolverMethod::Cg;
 }
 
 struct Sample {

@@ -30,7 +30,7 @@
 namespace hofem::bench {
 namespace {
 
-bool is_direct(const std::string& name) { return name == "cholmod" || name == "umfpack" || name == "eigen-ldlt"; }
+bool is_direct(const std::string& name) { return SolverSpec::parse(name).is_direct(); }
 
 struct NewtonCase {
   hofem::MmsCase mms;
@@ -67,7 +67,7 @@ struct NewtonSample {
 NewtonSample solve_once(const hofem::MmsProblem& p, const NewtonCase& c) {
   NewtonSample s;
   StaticOptions options = p.options;
-  options.linear_solver = c.solver;
+  options.solver = SolverSpec::parse(c.solver);
   options.newton.eisenstat_walker = c.eisenstat_walker;
   const auto t0 = Clock::now();
   try {
@@ -151,7 +151,7 @@ void register_newton_sweep() {
           if (ew && is_direct(solver)) continue;  // Eisenstat-Walker changes nothing for a direct solver
           NewtonCase c;
           c.mms.problem = "neohookean";
-          c.mms.linear_solver = "cholmod";  // MmsProblem's options at Newton rtol 1e-10, not auto's
+          c.mms.solver = SolverSpec::parse("cholmod");  // MmsProblem's options at Newton rtol 1e-10, not auto's
           c.mms.order = order;
           c.mms.n = cubes_for_level("mms-neohookean", CellType::Tetrahedron, order, level);
           c.level = level;

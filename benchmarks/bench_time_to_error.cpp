@@ -52,7 +52,7 @@ hofem::MmsCase mms_case(const TimeToErrorCase& c) {
   m.problem = c.problem;
   m.order = c.order;
   m.n = c.n;
-  m.linear_solver = c.solver;
+  m.solver = SolverSpec::parse(c.solver);
   return m;
 }
 
@@ -72,9 +72,9 @@ double reference_l2_error(const TimeToErrorCase& c, long unknowns, const std::st
   const auto key = std::make_tuple(c.problem, c.order, c.n);
   if (auto it = cache.find(key); it != cache.end()) return it->second;
   hofem::MmsCase ref = mms_case(c);
-  ref.linear_solver = "cholmod";
+  ref.solver = SolverSpec::parse("cholmod");
   if (unknowns > 100000 && iterative_solver != "cholmod") {
-    ref.linear_solver = iterative_solver;
+    ref.solver = SolverSpec::parse(iterative_solver);
     ref.algebraic_rtol = 1e-12;
   }
   const hofem::MmsResult r = hofem::run_mms(ref);

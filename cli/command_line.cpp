@@ -1,5 +1,7 @@
 #include "command_line.hpp"
 
+#include "solver/solver_spec.hpp"
+
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
@@ -44,7 +46,10 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   mms->add_option("--n", mo.n, "Cubes per side (>= 1)")->required();
   mms->add_option("--cell", mo.cell, "tet or hex")->capture_default_str();
   mms->add_flag("--perturbed", mo.perturbed, "Randomly perturb interior vertices (non-uniform mesh)");
-  mms->add_option("--solver", mo.solver, "Linear solver: auto (the fastest for the system, with a tolerance tied to the discretisation error), cholmod, umfpack, eigen-ldlt, hypre-pcg+amg, or <cg|cr|minres|gmres>+<none|jacobi|block-jacobi|ic0|amg|amg-nodal|amg-aggressive|pmg|schwarz>")->capture_default_str();
+  mms->add_option("--solver", mo.solver,
+                  "Linear solver (auto: the fastest for the system, with a tolerance tied to the discretisation "
+                  "error): " + linear_solver_choices())
+      ->capture_default_str();
   mms->add_flag("--json", mo.json, "Print JSON");
   mms->add_flag("--distributed", mo.distributed,
                 "Partition the elements over the MPI ranks and solve on hypre (mpirun -np K hofem mms ...; rank 0 prints)");

@@ -242,13 +242,18 @@ int run_mms(const MmsOptions& o) {
   check_order(o.order);
   check_cube_size(o.n, cell, o.order, "--n");
   if (!o.vtu.empty()) ensure_parent_directory(o.vtu);
-  hofem::MmsCase c{o.problem, cell, o.order, o.n, o.perturbed, o.solver, o.vtu};
-  c.distributed = o.distributed;
   if ((o.krylov != "pcg" || o.amg != "amg" || o.rigid_body_modes) && !o.distributed)
     throw UsageError("--krylov, --amg and --rigid-body-modes choose the distributed solver: add --distributed");
-  c.distributed_solver = {o.krylov, o.amg, o.rigid_body_modes};
+  hofem::MmsCase c{o.problem, cell, o.order, o.n, o.perturbed, {}, o.vtu};
+  c.distributed = o.distributed;
   try {
-    validate(c.distributed_solver);
+    c.solver = SolverSpec::parse(o.solver);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(fmt::format("--solver: {}", e.what()));
+  }
+  c.solver.distributed = {o.krylov, o.amg, o.rigid_body_modes};
+  try {
+    validate(c.solver.distributed);
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }

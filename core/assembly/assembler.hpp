@@ -47,6 +47,11 @@ class Assembler {
  public:
   /// quadrature_degree < 0: default_quadrature_degree(cell, order, false).
   Assembler(const Mesh& mesh, const DofMap& dofs, int quadrature_degree = -1);
+  // The assembler keeps references to the mesh and the DOF map: a temporary
+  // would dangle, so binding one does not compile.
+  Assembler(Mesh&&, const DofMap&, int = -1) = delete;
+  Assembler(const Mesh&, DofMap&&, int = -1) = delete;
+  Assembler(Mesh&&, DofMap&&, int = -1) = delete;
 
   const Mesh& mesh() const { return mesh_; }
   const DofMap& dofs() const { return dofs_; }

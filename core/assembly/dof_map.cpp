@@ -1,10 +1,16 @@
 #include "assembly/dof_map.hpp"
 
+#include <atomic>
 #include <stdexcept>
 
 namespace hofem {
 
-DofMap::DofMap(int num_nodes, const std::vector<int>& constrained_nodes) : free_index_(3 * num_nodes, 0) {
+namespace {
+std::atomic<std::uint64_t> last_identity{0};
+}  // namespace
+
+DofMap::DofMap(int num_nodes, const std::vector<int>& constrained_nodes)
+    : free_index_(3 * num_nodes, 0), identity_(++last_identity) {
   for (int n : constrained_nodes) {
     if (n < 0 || n >= num_nodes) throw std::out_of_range("DofMap: constrained node " + std::to_string(n) + " out of range");
     for (int c = 0; c < 3; ++c) free_index_[3 * n + c] = -1;

@@ -5,6 +5,7 @@
 // free numbering that gradients and Hessians use.
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <vector>
 
 namespace hofem {
@@ -23,6 +24,12 @@ class DofMap {
   /// Global DOF of each free index.
   const std::vector<int>& free_dofs() const { return free_dofs_; }
   const std::vector<int>& constrained_dofs() const { return constrained_dofs_; }
+  /// A number no other DOF map built in this process has (0: default-constructed).
+  /// A DOF map never changes after construction, so copies share it; caches of
+  /// what was built for a DOF map (the p-multigrid's hierarchy) key on it, since
+  /// an address is reused when a problem rebuilds its map in place (a released
+  /// node set) or a new problem is constructed where an old one was.
+  std::uint64_t identity() const { return identity_; }
 
   /// Restriction of a global vector to the free DOFs, and the reverse scatter.
   Eigen::VectorXd restrict(const Eigen::VectorXd& global) const;
@@ -33,6 +40,7 @@ class DofMap {
   std::vector<int> free_dofs_;
   std::vector<int> constrained_dofs_;
   int num_free_ = 0;
+  std::uint64_t identity_ = 0;
 };
 
 }  // namespace hofem

@@ -47,7 +47,7 @@ std::unique_ptr<DistributedMesh> piece_of(const Mesh& mesh, const DynamicsOption
   if (o.integrator != Integrator::ImplicitEuler || o.rayleigh_beta > 0.0)
     throw std::invalid_argument("dynamics: distributed runs support implicit Euler without stiffness damping (so far)");
   ensure_hypre();
-  validate(o.distributed_solver);
+  validate(o.solver.distributed);
   return std::make_unique<DistributedMesh>(distribute_mesh(MPI_COMM_WORLD, mesh));
 }
 
@@ -167,16 +167,13 @@ void DynamicElasticity::ensure_consistent_mass() {
 
 void DynamicElasticity::ensure_linear_solver() {
   if (solver_) return;
-  const SolverChoice choice = dist_ ? SolverChoice{"hypre", "distributed"}
-                                    : resolve_linear_solver(options_.linear_solver,
+  const SolverChoice choice = dist_ ? SolverChoice{options_.solver, "distributed"}
+                                    : resolve_linear_solver(options_.solver,
                                                             {dofs_.num_free(), mesh_.order, !rules_.empty()});
-  stats_.linear_solver = choice.solver;
+  stats_.linear_solver = dist_ ? "hypre" : choice.spec.name();
   stats_.linear_solver_reason = choice.reason;
-  solver_ = make_problem_solver(dist_.get(), rows_, choice.solver, options_.distributed_solver, mesh_, dofs_,
+  solver_ = make_problem_solver(dist_.get(), rows_, choice.spec, mesh_, dofs_,
                                 options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
-  if (options_.krylov_iterations > 0 && !solver_->set_fixed_iterations(options_.krylov_iterations))
-    throw std::invalid_argument(fmt::format("krylov_iterations = {} needs a Krylov solver, not {}",
-                                            options_.krylov_iterations, solver_->name()));
   K_ = assembler_->new_matrix();
 }
 

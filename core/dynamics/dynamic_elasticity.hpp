@@ -23,6 +23,7 @@
 #include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/newton.hpp"
+#include "solver/problem_options.hpp"
 #include "solver/solver_choice.hpp"
 
 #include <Eigen/Core>
@@ -36,7 +37,14 @@ namespace hofem {
 
 enum class MassKind { Consistent, Lumped };
 
-struct DynamicsOptions {
+/// The shared options (ProblemOptions: quadrature, element rules, solver with
+/// its Krylov budget, Newton, distribution) and time stepping's own.
+/// Distributed runs (ProblemOptions::distributed) support implicit Euler
+/// without stiffness damping so far; each rank integrates every element term
+/// (elastic, mass, gravity) of its elements and every nodal term (floor) of its
+/// owned nodes, and positions, velocities and displacements are those of
+/// mesh(), this rank's piece.
+struct DynamicsOptions : ProblemOptions {
   Integrator integrator = Integrator::ImplicitEuler;
   double dt = 1.0 / 60.0;
   double density = 1000.0;
@@ -48,32 +56,6 @@ struct DynamicsOptions {
   double rayleigh_beta = 0.0;
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
   std::optional<Floor> floor;
-  int quadrature_degree = -1;  ///< stiffness terms; < 0: default for order and material
-  /// Finite cell method: per-element stiffness and mass rules (finite_cell_quadrature's
-  /// element_rules()); nodes they leave without stiffness and mass are held at rest.
-  ElementRules element_rules;
-  /// Elements given blocks by block preconditioners ("schwarz"): finite cells'
-  /// schwarz_block_elements(); unset: every element.
-  std::optional<std::vector<int>> preconditioner_blocks;
-  /// A make_linear_solver() name, or "auto" (solver/solver_choice.hpp); the one
-  /// used is DynamicsStats::linear_solver.
-  std::string linear_solver = "auto";
-  /// > 0: every linear solve runs exactly this many Krylov iterations and takes
-  /// the iterate (LinearSolver::set_fixed_iterations); needs a Krylov solver.
-  int krylov_iterations = 0;
-  /// Distributed over the ranks of MPI_COMM_WORLD (implicit Euler
-  /// without stiffness damping so far): each rank keeps its piece of the mesh
-  /// (recursive coordinate bisection; its elements with their owned and ghost
-  /// nodes) and integrates every element term (elastic, mass, gravity) of its
-  /// elements and every nodal term (floor) of its owned nodes; scalars are summed
-  /// over the ranks, force vectors completed by the halo, and the linear solves
-  /// run on hypre (`distributed_solver`; linear_solver unused). Prescribed node
-  /// sets and element rules are given on the global mesh; positions, velocities
-  /// and displacements are then those of mesh(), this rank's piece. Every rank
-  /// must construct and step the body.
-  bool distributed = false;
-  DistributedSolverOptions distributed_solver;
-  NewtonOptions newton;
   /// Explicit runs stop as unstable when the mechanical energy exceeds this
   /// factor times its reference (initial energy, gravity and boundary work scales).
   double instability_factor = 1e6;
@@ -123,6 +105,9 @@ class DynamicElasticity {
  public:
   DynamicElasticity(const Mesh& mesh, const Material& material, std::vector<PrescribedMotion> motions,
                     DynamicsOptions options);
+  // The mesh and the material are kept by reference: temporaries would dangle.
+  DynamicElasticity(Mesh&&, const Material&, std::vector<PrescribedMotion>, DynamicsOptions) = delete;
+  DynamicElasticity(const Mesh&, Material&&, std::vector<PrescribedMotion>, DynamicsOptions) = delete;
   ~DynamicElasticity();
   DynamicElasticity(const DynamicElasticity&) = delete;  // the assembler refers to dofs_
   DynamicElasticity& operator=(const DynamicElasticity&) = delete;

@@ -49,7 +49,7 @@ StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, s
   if (options_.distributed) {
     // From here on this rank sees only its piece of the mesh.
     ensure_hypre();
-    validate(options_.distributed_solver);
+    validate(options_.solver.distributed);
     dist_ = std::make_unique<DistributedMesh>(distribute_mesh(MPI_COMM_WORLD, mesh));
     const LocalMesh& local = dist_->local;
     constrained = to_local_nodes(local, constrained);
@@ -74,7 +74,7 @@ StaticElasticity::StaticElasticity(std::unique_ptr<DistributedMesh> piece, const
   const auto t0 = Clock::now();
   options_.distributed = true;
   ensure_hypre();
-  validate(options_.distributed_solver);
+  validate(options_.solver.distributed);
   if (!options_.element_rules.stiffness.empty() || !options_.element_rules.mass.empty() ||
       options_.external_load.size() > 0)
     throw std::invalid_argument("static problem: element rules and external loads need the global mesh (the other constructor)");
@@ -105,10 +105,9 @@ void StaticElasticity::finish_setup(const std::vector<int>& constrained, const E
   dofs_ = DofMap(m.num_nodes(), constrained);
   assembler_ = std::make_unique<Assembler>(m, dofs_, options_.quadrature_degree);
   assembler_->set_element_rules(rules);
-  solver_choice_ = dist_ ? SolverChoice{"hypre", "distributed"}
-                         : resolve_linear_solver(options_.linear_solver,
-                                                 {dofs_.num_free(), m.order, !rules.empty()});
-  solver_ = make_problem_solver(dist_.get(), rows_, solver_choice_.solver, options_.distributed_solver, m, dofs_,
+  solver_choice_ = dist_ ? SolverChoice{options_.solver, "distributed"}
+                         : resolve_linear_solver(options_.solver, {dofs_.num_free(), m.order, !rules.empty()});
+  solver_ = make_problem_solver(dist_.get(), rows_, solver_choice_.spec, m, dofs_,
                                 options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
   const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * m.order + 2;
   f_ext_ = body_force ? assembler_->body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * m.num_nodes());
@@ -309,7 +308,7 @@ StaticReport StaticElasticity::solve() {
   report.solve_seconds = std::max(0.0, seconds_since(t0) - assembly_seconds_);
   report.factorizations = solver_->factorizations();
   report.symbolic_analyses = solver_->analyses();
-  report.linear_solver = solver_choice_.solver;
+  report.linear_solver = dist_ ? "hypre" : solver_choice_.spec.name();
   report.linear_solver_reason = solver_choice_.reason;
   return report;
 }

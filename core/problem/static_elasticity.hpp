@@ -13,6 +13,7 @@
 #include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/newton.hpp"
+#include "solver/problem_options.hpp"
 #include "solver/solver_choice.hpp"
 
 #include <Eigen/Core>
@@ -32,33 +33,13 @@ struct DirichletCondition {
   VectorField displacement;   ///< u_D(X); empty means fixed (zero)
 };
 
-struct StaticOptions {
-  int quadrature_degree = -1;  ///< stiffness terms; < 0: default for order and material
+/// The shared options (ProblemOptions: quadrature, element rules, solver,
+/// Newton, distribution) and the static solve's own.
+struct StaticOptions : ProblemOptions {
   int load_degree = -1;        ///< body-force integration; < 0: 2p + 2
-  /// A make_linear_solver() name, or "auto": the fastest for this system
-  /// (solver/solver_choice.hpp), recorded in StaticReport::linear_solver.
-  std::string linear_solver = "auto";
-  NewtonOptions newton;
-  /// Finite cell method: per-element stiffness and mass/load rules (finite_cell_quadrature's
-  /// element_rules()); nodes they leave without stiffness are fixed (zero displacement).
-  ElementRules element_rules;
-  /// Elements given blocks by block preconditioners ("schwarz"): finite cells'
-  /// schwarz_block_elements(); unset: every element.
-  std::optional<std::vector<int>> preconditioner_blocks;
   /// Extra external load at full load factor, all 3 * num_nodes DOFs (e.g. surface
-  /// tractions integrated by the caller); empty = none.
+  /// tractions integrated by the caller); empty = none. Distributed: given on the global mesh.
   Eigen::VectorXd external_load;
-  /// Distributed over the ranks of MPI_COMM_WORLD: the elements are
-  /// partitioned (recursive coordinate bisection) and each rank keeps only its
-  /// piece of the mesh (its elements, their owned and ghost nodes): DOF map,
-  /// pattern, element data and vectors are the piece's. Energies are summed over
-  /// the ranks, forces completed by the node halo, and every linear solve runs
-  /// on hypre (`distributed_solver` on the distributed IJ matrix; `linear_solver`
-  /// is then not used). With one rank (no mpirun) it is the same code path. Every
-  /// rank must construct and solve the problem (collective calls); Dirichlet node
-  /// sets, element rules and external_load are given on the global mesh.
-  bool distributed = false;
-  DistributedSolverOptions distributed_solver;
   int max_load_halvings = 6;   ///< a failed load step is halved at most this many times in a row
   /// Tangent predictor at each load step: u += -K^-1 (dg/dload) dload, with K at
   /// the last converged state. Without it the prescribed boundary displacement
@@ -95,6 +76,11 @@ class StaticElasticity final : public NonlinearProblem {
   /// are not taken (they are given on a whole mesh). Collective.
   StaticElasticity(std::unique_ptr<DistributedMesh> piece, const Material& material,
                    std::vector<DirichletCondition> dirichlet, VectorField body_force, StaticOptions options = {});
+  // The mesh and the material are kept by reference: temporaries would dangle.
+  StaticElasticity(Mesh&&, const Material&, std::vector<DirichletCondition>, VectorField, StaticOptions = {}) = delete;
+  StaticElasticity(const Mesh&, Material&&, std::vector<DirichletCondition>, VectorField, StaticOptions = {}) = delete;
+  StaticElasticity(std::unique_ptr<DistributedMesh>, Material&&, std::vector<DirichletCondition>, VectorField,
+                   StaticOptions = {}) = delete;
 
   StaticReport solve();
 
@@ -141,7 +127,7 @@ class StaticElasticity final : public NonlinearProblem {
   StaticOptions options_;
   DofMap dofs_;
   std::unique_ptr<Assembler> assembler_;
-  SolverChoice solver_choice_;  ///< options_.linear_solver resolved
+  SolverChoice solver_choice_;  ///< options_.solver resolved
   std::unique_ptr<LinearSolver> solver_;
   Eigen::VectorXd f_ext_;     ///< consistent body-force vector at full load (all DOFs)
   Eigen::VectorXd u_dirichlet_;  ///< prescribed displacement at full load (all DOFs, zero elsewhere)

@@ -16,7 +16,10 @@
 //   "dt": 0.01, "duration": 1.0,                    (not for "static")
 //   "mass": "lumped" | "consistent", "lumping": "row-sum" | "hrz",          (optional)
 //   "solver": {"linear": "auto", "krylov_iterations": 12, "newton_rtol": 1e-8, "newton_max_iterations": 50,
-//              "eisenstat_walker": false},                                (optional)
+//              "eisenstat_walker": false,
+//              "distributed": {"krylov": "pcg" | "gmres", "amg": "amg" | "amg-nodal" | "amg-aggressive",
+//                              "rigid_body_modes": false, "gmres_restart": 50}},   (optional)
+//              (distributed: hypre's solver in runs with --distributed)
 //              (krylov_iterations: every linear solve runs exactly that many
 //               iterations of a Krylov solver and takes the iterate, converged
 //               or not - a fixed budget per solve; time-stepping scenes only)

@@ -29,6 +29,7 @@ class SceneEmbedding {
   /// Throws SceneError (naming the scene file and key) if the geometry cannot be
   /// built, the background is not affine, or the geometry is not inside it.
   SceneEmbedding(const Scene& scene, const Mesh& background);
+  SceneEmbedding(const Scene&, Mesh&&) = delete;  // kept by reference: a temporary would dangle
 
   ElementRules element_rules() const { return cells_.element_rules(); }
   /// Cut cells under a volume fraction of 0.5: the blocks of the "schwarz" preconditioner (Longva et al. 2020 §5.2).

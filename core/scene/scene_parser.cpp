@@ -80,6 +80,16 @@ void check_generated_size(const Field& f, const SceneShape& shape, CellType cell
                                                                       order, excess));
 }
 
+// "solver": {"distributed": {...}}: hypre's Krylov method and BoomerAMG for
+// runs with --distributed (the options `hofem mms` takes as --krylov, --amg, --rigid-body-modes).
+void parse_distributed_solver(const Field& f, DistributedSolverOptions& o) {
+  f.keys({"krylov", "amg", "rigid_body_modes", "gmres_restart"});
+  if (f.has("krylov")) o.krylov = f.at("krylov").choice({"pcg", "gmres"});
+  if (f.has("amg")) o.amg = f.at("amg").choice(boomeramg_variant_names());
+  if (f.has("rigid_body_modes")) o.rigid_body_modes = f.at("rigid_body_modes").boolean();
+  if (f.has("gmres_restart")) o.gmres_restart = f.at("gmres_restart").integer(1, 100000);
+}
+
 void parse_mesh(const Field& m, Scene& s) {
   m.keys({"box", "tube", "torus", "file", "cell", "order"});
   parse_shape(m, s.mesh, s.file);
@@ -243,25 +253,24 @@ Scene parse_validated(const json& j, const std::string& origin) {
     d.lumping = root.at("lumping").choice({"row-sum", "hrz"}) == "hrz" ? MassLumping::HRZ : MassLumping::RowSum;
   if (root.has("solver")) {
     const Field sv = root.at("solver");
-    sv.keys({"linear", "krylov_iterations", "newton_rtol", "newton_max_iterations", "eisenstat_walker"});
+    sv.keys({"linear", "krylov_iterations", "distributed", "newton_rtol", "newton_max_iterations",
+             "eisenstat_walker"});
     if (sv.has("linear")) {
       std::vector<std::string> names = linear_solver_names();
       names.insert(names.begin(), "auto");
-      d.linear_solver = sv.at("linear").choice(names);
+      d.solver = SolverSpec::parse(sv.at("linear").choice(names));
     }
     if (sv.has("krylov_iterations")) {
       if (s.is_static)
         sv.at("krylov_iterations").fail("is for time-stepping scenes (a static solve runs to its tolerance)");
-      d.krylov_iterations = sv.at("krylov_iterations").integer(1, 100000);
-      const std::string& m = d.linear_solver;
-      const bool krylov =
-          m.starts_with("cg+") || m.starts_with("cr+") || m.starts_with("minres+") || m.starts_with("gmres+");
-      if (!krylov)
+      d.solver.fixed_iterations = sv.at("krylov_iterations").integer(1, 100000);
+      if (!d.solver.is_krylov())
         sv.at("krylov_iterations")
             .fail(fmt::format("needs solver.linear = a Krylov method (cg+, cr+, minres+, gmres+ with a "
                               "preconditioner), not \"{}\"",
-                              m));
+                              d.solver.name()));
     }
+    if (sv.has("distributed")) parse_distributed_solver(sv.at("distributed"), d.solver.distributed);
     if (sv.has("newton_rtol")) d.newton.rtol = sv.at("newton_rtol").number(0.0, 1.0, true, true);
     if (sv.has("newton_max_iterations")) d.newton.max_iterations = sv.at("newton_max_iterations").integer(1, 10000);
     if (sv.has("eisenstat_walker")) d.newton.eisenstat_walker = sv.at("eisenstat_walker").boolean();

@@ -196,163 +196,181 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
 
 namespace {
 
-SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const SceneRunOptions& options, bool writer,
-                            Clock::time_point t_start) {
-  // A distributed run's fields live on the ranks' pieces of the mesh: gathered
-  // to the writer in global order (one VTU per frame, one stats file).
-  auto nodal = [](const DistributedMesh* d, const Eigen::VectorXd& v) { return d ? d->gather_nodal(v) : v; };
-  auto elemental = [](const DistributedMesh* d, const Eigen::VectorXd& v) { return d ? d->gather_elemental(v) : v; };
-  const Mesh mesh = build_scene_mesh(s);
-  std::optional<SceneEmbedding> embedding;
-  if (s.embedded) embedding.emplace(s, mesh);
-  SceneEmbedding* const emb = embedding ? &*embedding : nullptr;
-  const auto material = make_material(s.material, LameParameters::from_young_poisson(s.young, s.poisson));
-  std::vector<PrescribedMotion> motions = scene_motions(s, mesh);
-  const bool progress = options.progress && isatty(fileno(stderr));
+// A distributed run's fields live on the ranks' pieces of the mesh: gathered
+// to the writer in global order (one VTU per frame, one stats file).
+Eigen::VectorXd nodal(const DistributedMesh* d, const Eigen::VectorXd& v) { return d ? d->gather_nodal(v) : v; }
+Eigen::VectorXd elemental(const DistributedMesh* d, const Eigen::VectorXd& v) { return d ? d->gather_elemental(v) : v; }
 
-  SceneRunResult result;
-  json& st = result.stats;
-  st["scene"] = s.name;
-  st["file"] = s.file;
-  st["integrator"] = s.is_static ? std::string("static") : std::string(integrator_name(s.dynamics.integrator));
-  st["mesh"] = {{"cell", s.cell == CellType::Hexahedron ? "hex" : "tet"}, {"order", mesh.order},
-                {"nodes", mesh.num_nodes()}, {"elements", mesh.num_elements()}};
-  st["material"] = {{"model", s.material}, {"young", s.young}, {"poisson", s.poisson}, {"density", s.density}};
-  if (emb) st["embedded"] = emb->stats();
-  std::vector<std::pair<double, std::string>> frames;
+// What every part of a run shares: the scene and where it writes, the mesh,
+// the embedding and the material built once, and what the run records.
+struct SceneRun {
+  const Scene& s;
+  const std::string& out_dir;
+  const SceneRunOptions& options;
+  bool writer;  ///< this rank writes the files (rank 0)
+  Clock::time_point t_start;
+  const Mesh& mesh;
+  SceneEmbedding* emb;  ///< null without embedded geometry
+  const Material& material;
+  SceneRunResult& result;
+  json& st;  ///< result.stats
+  std::vector<std::pair<double, std::string>>& frames;
 
-  if (s.is_static) {
-    // Static equilibrium: the motions' positions at their end time are the
-    // prescribed displacements; no mass, no time stepping.
-    std::vector<DirichletCondition> dirichlet;
-    for (PrescribedMotion& m : motions) {
-      if (!m.moves()) {
-        dirichlet.push_back({m.nodes, nullptr});
-        continue;
-      }
-      // The motion's final position (its "until" time) is the displacement.
-      const auto position = m.position;
-      dirichlet.push_back({m.nodes, [position](const Eigen::Vector3d& X) { return Eigen::Vector3d(position(X, 1e300) - X); }});
+  void run_static(std::vector<PrescribedMotion> motions);
+  void run_dynamic(std::vector<PrescribedMotion> motions);
+  /// The run's summary into stats.json, and the .pvd files listing its frames (the writer only).
+  void write_outputs();
+};
+
+// What a static solve built and evaluated (the static counterpart of stats_json).
+json static_stats_json(const StaticReport& r, long long polar_decompositions) {
+  return {{"linear_solver", r.linear_solver},
+          {"linear_solver_reason", r.linear_solver_reason},
+          {"mass", "none (static)"},
+          {"mass_matrices_built", 0},
+          {"hessian_assemblies", r.newton_iterations},
+          {"symbolic_analyses", r.symbolic_analyses},
+          {"factorizations", r.factorizations},
+          {"newton_iterations", r.newton_iterations},
+          {"linear_iterations", r.linear_iterations},
+          {"load_steps", r.load_steps},
+          {"polar_decompositions", polar_decompositions},
+          {"assembly_seconds", r.assembly_seconds},
+          {"solve_seconds", r.solve_seconds}};
+}
+
+// Static equilibrium: the motions' positions at their end time are the
+// prescribed displacements; no mass, no time stepping.
+void SceneRun::run_static(std::vector<PrescribedMotion> motions) {
+  std::vector<DirichletCondition> dirichlet;
+  for (PrescribedMotion& m : motions) {
+    if (!m.moves()) {
+      dirichlet.push_back({m.nodes, nullptr});
+      continue;
     }
-    StaticOptions so;
-    so.distributed = options.distributed;
-    so.linear_solver = s.dynamics.linear_solver;
-    so.newton = s.dynamics.newton;
-    if (emb) {
-      so.element_rules = emb->element_rules();
-      so.preconditioner_blocks = emb->preconditioner_blocks();
-    }
-    const Eigen::Vector3d rho_g = s.density * s.dynamics.gravity;
-    VectorField body;
-    if (rho_g.squaredNorm() > 0.0) body = [rho_g](const Eigen::Vector3d&) { return rho_g; };
-    StaticElasticity problem(mesh, *material, dirichlet, body, so);
-    st["quadrature_points"] = stiffness_points(mesh, static_cast<int>(problem.assembler().rule().size()), emb);
-    if (options.observer && writer)
-      options.observer(SceneState{mesh, emb, 0, 0.0, Eigen::VectorXd::Zero(3 * mesh.num_nodes())});
-    const StaticReport r = problem.solve();
-    result.ok = r.converged;
-    result.message = r.message;
-    const DistributedMesh* piece = problem.distributed_mesh();
-    const Eigen::VectorXd& u_mine = problem.displacement();
-    const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(problem.mesh().nodes.data(), u_mine.size()) + u_mine;
-    const Eigen::VectorXd u = nodal(piece, u_mine);
-    const Eigen::VectorXd energies = elemental(piece, problem.assembler().element_energies(*material, x));
-    const Eigen::VectorXd volumes = elemental(piece, problem.assembler().element_volumes());
-    const Eigen::VectorXd density = writer ? energy_density(energies, volumes) : Eigen::VectorXd();
-    if (options.observer && writer && r.converged) options.observer(SceneState{mesh, emb, 1, 1.0, u});
-    if (options.write_frames && writer) write_frame(out_dir, 0, mesh, u, Eigen::VectorXd(), density, emb, frames, 0.0);
-    st["built"] = {{"linear_solver", r.linear_solver},
-                   {"linear_solver_reason", r.linear_solver_reason},
-                   {"mass", "none (static)"},
-                   {"mass_matrices_built", 0},
-                   {"hessian_assemblies", r.newton_iterations},
-                   {"symbolic_analyses", r.symbolic_analyses},
-                   {"factorizations", r.factorizations},
-                   {"newton_iterations", r.newton_iterations},
-                   {"linear_iterations", r.linear_iterations},
-                   {"load_steps", r.load_steps},
-                   {"polar_decompositions", material->needs_polar_decomposition()
-                                                ? static_cast<long long>(r.newton_iterations) * mesh.num_elements() *
-                                                      problem.assembler().rule().size()
-                                                : 0},
-                   {"assembly_seconds", r.assembly_seconds},
-                   {"solve_seconds", r.solve_seconds}};
-    if (piece) st["per_rank"] = to_json(gather_rank_stats(problem.rank_stats(), piece->comm));
-  } else {
-    DynamicsOptions dynamics = s.dynamics;
-    dynamics.distributed = options.distributed;
-    if (emb) {
-      dynamics.element_rules = emb->element_rules();
-      dynamics.preconditioner_blocks = emb->preconditioner_blocks();  // "schwarz": cut cells under 0.5 (§5.2)
-    }
-    DynamicElasticity sim(mesh, *material, std::move(motions), std::move(dynamics));
-    const Eigen::Vector3d v0 = s.initial_velocity;
-    if (v0.squaredNorm() > 0.0) sim.set_velocity([v0](const Eigen::Vector3d&) { return v0; });
-    const DistributedMesh* piece = sim.distributed_mesh();
-    st["quadrature_points"] = stiffness_points(mesh, static_cast<int>(sim.assembler().rule().size()), emb);
-    const Eigen::VectorXd volumes = elemental(piece, sim.assembler().element_volumes());
-    auto frame = [&](int k) {
-      if (!options.write_frames) return;
-      const Eigen::VectorXd energies = elemental(piece, sim.assembler().element_energies(*material, sim.positions()));
-      const Eigen::VectorXd u = nodal(piece, sim.displacement()), v = nodal(piece, sim.velocities());
-      if (!writer) return;
-      write_frame(out_dir, k, mesh, u, v, energy_density(energies, volumes), emb, frames, sim.time());
-    };
-    if (is_explicit(s.dynamics.integrator)) st["stable_dt_estimate"] = sim.estimate_stable_dt();
-    const int steps = static_cast<int>(std::ceil(s.duration / s.dynamics.dt - 1e-9));
-    // Mesh, finite-cell rules, mass matrix, ...: everything before the first step.
-    const auto t_steps = Clock::now();
-    st["setup_seconds"] = std::chrono::duration<double>(t_steps - t_start).count();
-    frame(0);
-    if (options.observer) {
-      const Eigen::VectorXd u0 = nodal(piece, sim.displacement());
-      if (writer) options.observer(SceneState{mesh, emb, 0, sim.time(), u0});
-    }
-    json per_step = json::array();
-    VolumeRatioRecord deformation;
-    int done = 0;
-    for (int k = 1; k <= steps; ++k) {
-      const StepReport r = sim.step();
-      json row{{"step", k}, {"t", r.time}, {"ok", r.ok}, {"newton_iterations", r.newton_iterations},
-               {"linear_iterations", r.linear_iterations}, {"newton_residual", r.newton_residual},
-               {"seconds", r.seconds}};
-      if (!r.ok) {
-        row["message"] = r.message;
-        per_step.push_back(row);
-        result.ok = false;
-        result.message = r.message;
-        break;
-      }
-      const Energies e = sim.energies();
-      row["energy"] = {{"kinetic", e.kinetic}, {"elastic", e.elastic}, {"gravity", e.gravity}, {"floor", e.floor},
-                       {"total", e.total()}};
-      const Eigen::VectorXd u = nodal(piece, sim.displacement());  // gathered: the writer's curve
-      if (writer) add_displacement_curve(mesh, u, emb, row);
-      add_volume_ratio(elemental(piece, sim.assembler().element_min_det_F(sim.positions())), row, deformation);
-      if (writer && options.observer) options.observer(SceneState{mesh, emb, k, r.time, u});
-      per_step.push_back(row);
-      done = k;
-      if (k % s.output_every == 0 || k == steps) frame(k);
-      if (progress) progress_bar(static_cast<double>(k) / steps, sim.time(), k == steps);
-    }
-    if (progress && !result.ok) std::fprintf(stderr, "\n");
-    st["dt"] = s.dynamics.dt;
-    st["duration"] = s.duration;
-    st["steps"] = per_step;
-    st["steps_done"] = done;
-    st["deformation"] = deformation.to_json();
-    st["stepping_seconds"] = std::chrono::duration<double>(Clock::now() - t_steps).count();  // frames included
-    st["built"] = stats_json(sim.stats());
-    if (piece && done > 0) st["per_rank"] = to_json(gather_rank_stats(sim.rank_stats(), piece->comm));
-    if (result.ok) result.message = fmt::format("{} steps to t = {:.6g}", done, sim.time());
+    // The motion's final position (its "until" time) is the displacement.
+    const auto position = m.position;
+    dirichlet.push_back({m.nodes, [position](const Eigen::Vector3d& X) { return Eigen::Vector3d(position(X, 1e300) - X); }});
   }
+  StaticOptions so;
+  so.distributed = options.distributed;
+  so.solver = s.dynamics.solver;
+  so.newton = s.dynamics.newton;
+  if (emb) {
+    so.element_rules = emb->element_rules();
+    so.preconditioner_blocks = emb->preconditioner_blocks();
+  }
+  const Eigen::Vector3d rho_g = s.density * s.dynamics.gravity;
+  VectorField body;
+  if (rho_g.squaredNorm() > 0.0) body = [rho_g](const Eigen::Vector3d&) { return rho_g; };
+  StaticElasticity problem(mesh, material, dirichlet, body, so);
+  st["quadrature_points"] = stiffness_points(mesh, static_cast<int>(problem.assembler().rule().size()), emb);
+  if (options.observer && writer)
+    options.observer(SceneState{mesh, emb, 0, 0.0, Eigen::VectorXd::Zero(3 * mesh.num_nodes())});
+  const StaticReport r = problem.solve();
+  result.ok = r.converged;
+  result.message = r.message;
+  const DistributedMesh* piece = problem.distributed_mesh();
+  const Eigen::VectorXd& u_mine = problem.displacement();
+  const Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(problem.mesh().nodes.data(), u_mine.size()) + u_mine;
+  const Eigen::VectorXd u = nodal(piece, u_mine);
+  const Eigen::VectorXd energies = elemental(piece, problem.assembler().element_energies(material, x));
+  const Eigen::VectorXd volumes = elemental(piece, problem.assembler().element_volumes());
+  const Eigen::VectorXd density = writer ? energy_density(energies, volumes) : Eigen::VectorXd();
+  if (options.observer && writer && r.converged) options.observer(SceneState{mesh, emb, 1, 1.0, u});
+  if (options.write_frames && writer) write_frame(out_dir, 0, mesh, u, Eigen::VectorXd(), density, emb, frames, 0.0);
+  const long long polar = material.needs_polar_decomposition() ? static_cast<long long>(r.newton_iterations) *
+                                                                   mesh.num_elements() * problem.assembler().rule().size()
+                                                             : 0;
+  st["built"] = static_stats_json(r, polar);
+  if (piece) st["per_rank"] = to_json(gather_rank_stats(problem.rank_stats(), piece->comm));
+}
+
+// One step's row of stats.json, before its energies and curves.
+json step_row(int k, const StepReport& r) {
+  return {{"step", k}, {"t", r.time}, {"ok", r.ok}, {"newton_iterations", r.newton_iterations},
+          {"linear_iterations", r.linear_iterations}, {"newton_residual", r.newton_residual},
+          {"seconds", r.seconds}};
+}
+
+// Time stepping: frames every output_every steps, energies, the displacement
+// curve and min det F per step.
+void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
+  const bool progress = options.progress && isatty(fileno(stderr));
+  DynamicsOptions dynamics = s.dynamics;
+  dynamics.distributed = options.distributed;
+  if (emb) {
+    dynamics.element_rules = emb->element_rules();
+    dynamics.preconditioner_blocks = emb->preconditioner_blocks();  // "schwarz": cut cells under 0.5 (§5.2)
+  }
+  DynamicElasticity sim(mesh, material, std::move(motions), std::move(dynamics));
+  const Eigen::Vector3d v0 = s.initial_velocity;
+  if (v0.squaredNorm() > 0.0) sim.set_velocity([v0](const Eigen::Vector3d&) { return v0; });
+  const DistributedMesh* piece = sim.distributed_mesh();
+  st["quadrature_points"] = stiffness_points(mesh, static_cast<int>(sim.assembler().rule().size()), emb);
+  const Eigen::VectorXd volumes = elemental(piece, sim.assembler().element_volumes());
+  auto frame = [&](int k) {
+    if (!options.write_frames) return;
+    const Eigen::VectorXd energies = elemental(piece, sim.assembler().element_energies(material, sim.positions()));
+    const Eigen::VectorXd u = nodal(piece, sim.displacement()), v = nodal(piece, sim.velocities());
+    if (!writer) return;
+    write_frame(out_dir, k, mesh, u, v, energy_density(energies, volumes), emb, frames, sim.time());
+  };
+  if (is_explicit(s.dynamics.integrator)) st["stable_dt_estimate"] = sim.estimate_stable_dt();
+  const int steps = static_cast<int>(std::ceil(s.duration / s.dynamics.dt - 1e-9));
+  // Mesh, finite-cell rules, mass matrix, ...: everything before the first step.
+  const auto t_steps = Clock::now();
+  st["setup_seconds"] = std::chrono::duration<double>(t_steps - t_start).count();
+  frame(0);
+  if (options.observer) {
+    const Eigen::VectorXd u0 = nodal(piece, sim.displacement());
+    if (writer) options.observer(SceneState{mesh, emb, 0, sim.time(), u0});
+  }
+  json per_step = json::array();
+  VolumeRatioRecord deformation;
+  int done = 0;
+  for (int k = 1; k <= steps; ++k) {
+    const StepReport r = sim.step();
+    json row = step_row(k, r);
+    if (!r.ok) {
+      row["message"] = r.message;
+      per_step.push_back(row);
+      result.ok = false;
+      result.message = r.message;
+      break;
+    }
+    const Energies e = sim.energies();
+    row["energy"] = {{"kinetic", e.kinetic}, {"elastic", e.elastic}, {"gravity", e.gravity}, {"floor", e.floor},
+                     {"total", e.total()}};
+    const Eigen::VectorXd u = nodal(piece, sim.displacement());  // gathered: the writer's curve
+    if (writer) add_displacement_curve(mesh, u, emb, row);
+    add_volume_ratio(elemental(piece, sim.assembler().element_min_det_F(sim.positions())), row, deformation);
+    if (writer && options.observer) options.observer(SceneState{mesh, emb, k, r.time, u});
+    per_step.push_back(row);
+    done = k;
+    if (k % s.output_every == 0 || k == steps) frame(k);
+    if (progress) progress_bar(static_cast<double>(k) / steps, sim.time(), k == steps);
+  }
+  if (progress && !result.ok) std::fprintf(stderr, "\n");
+  st["dt"] = s.dynamics.dt;
+  st["duration"] = s.duration;
+  st["steps"] = per_step;
+  st["steps_done"] = done;
+  st["deformation"] = deformation.to_json();
+  st["stepping_seconds"] = std::chrono::duration<double>(Clock::now() - t_steps).count();  // frames included
+  st["built"] = stats_json(sim.stats());
+  if (piece && done > 0) st["per_rank"] = to_json(gather_rank_stats(sim.rank_stats(), piece->comm));
+  if (result.ok) result.message = fmt::format("{} steps to t = {:.6g}", done, sim.time());
+}
+
+void SceneRun::write_outputs() {
   st["ranks"] = 1;
   if (options.distributed) {
     int ranks = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     st["ranks"] = ranks;
   }
-  if (!writer) return result;
+  if (!writer) return;
   if (options.write_frames) {
     write_pvd((std::filesystem::path(out_dir) / (s.name + ".pvd")).string(), frames);
     if (emb) emb->write_pvd(out_dir, s.name);
@@ -364,6 +382,33 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
   st["wall_seconds"] = std::chrono::duration<double>(Clock::now() - t_start).count();
   if (!out_dir.empty())
     write_file_atomically((std::filesystem::path(out_dir) / "stats.json").string(), st.dump(1) + "\n");
+}
+
+SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const SceneRunOptions& options, bool writer,
+                            Clock::time_point t_start) {
+  const Mesh mesh = build_scene_mesh(s);
+  std::optional<SceneEmbedding> embedding;
+  if (s.embedded) embedding.emplace(s, mesh);
+  const auto material = make_material(s.material, LameParameters::from_young_poisson(s.young, s.poisson));
+  std::vector<PrescribedMotion> motions = scene_motions(s, mesh);
+
+  SceneRunResult result;
+  std::vector<std::pair<double, std::string>> frames;
+  SceneRun run{s, out_dir, options, writer, t_start, mesh, embedding ? &*embedding : nullptr, *material, result,
+               result.stats, frames};
+  json& st = result.stats;
+  st["scene"] = s.name;
+  st["file"] = s.file;
+  st["integrator"] = s.is_static ? std::string("static") : std::string(integrator_name(s.dynamics.integrator));
+  st["mesh"] = {{"cell", s.cell == CellType::Hexahedron ? "hex" : "tet"}, {"order", mesh.order},
+                {"nodes", mesh.num_nodes()}, {"elements", mesh.num_elements()}};
+  st["material"] = {{"model", s.material}, {"young", s.young}, {"poisson", s.poisson}, {"density", s.density}};
+  if (run.emb) st["embedded"] = run.emb->stats();
+  if (s.is_static)
+    run.run_static(std::move(motions));
+  else
+    run.run_dynamic(std::move(motions));
+  run.write_outputs();
   return result;
 }
 

@@ -11,6 +11,7 @@
 // the measurements behind the defaults are in boomeramg.cpp.
 #include "solver/hypre_matrix.hpp"
 #include "solver/preconditioner.hpp"
+#include "solver/solver_spec.hpp"  // boomeramg_variant_names
 
 #include <HYPRE_parcsr_ls.h>
 #include <Eigen/Core>
@@ -22,8 +23,6 @@
 
 namespace hofem {
 
-/// Names of the BoomerAMG configurations offered as preconditioners ("amg", ...).
-std::vector<std::string> boomeramg_variant_names();
 std::unique_ptr<Preconditioner> make_boomeramg_preconditioner(std::string_view variant);
 
 /// BoomerAMG parameters, each passed to the matching HYPRE_BoomerAMGSet* call

@@ -26,14 +26,6 @@ HYPRE_Int already_set_up(HYPRE_Solver, HYPRE_ParCSRMatrix, HYPRE_ParVector, HYPR
 
 }  // namespace
 
-void validate(const DistributedSolverOptions& o) {
-  if (o.krylov != "pcg" && o.krylov != "gmres")
-    throw std::invalid_argument(fmt::format("distributed solver: unknown Krylov method '{}' (pcg, gmres)", o.krylov));
-  boomeramg_options(o.amg);  // throws for an unknown variant, naming it
-  if (o.gmres_restart < 1)
-    throw std::invalid_argument(fmt::format("distributed solver: GMRES restart must be >= 1 (got {})", o.gmres_restart));
-}
-
 struct DistributedLinearSystem::Hypre {
   HYPRE_IJMatrix ij = nullptr;
   HYPRE_ParCSRMatrix parcsr = nullptr;
@@ -239,17 +231,17 @@ void DistributedHypreSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x)
 }
 
 std::unique_ptr<LinearSolver> make_problem_solver(const DistributedMesh* piece, std::unique_ptr<DistributedDofs>& rows,
-                                                  const std::string& serial_name,
-                                                  const DistributedSolverOptions& options, const Mesh& mesh,
-                                                  const DofMap& dofs, const std::vector<int>* blocks) {
+                                                  const SolverSpec& spec, const Mesh& mesh, const DofMap& dofs,
+                                                  const std::vector<int>* blocks) {
   std::unique_ptr<LinearSolver> solver;
   if (piece) {
     rows = std::make_unique<DistributedDofs>(distribute_dofs(*piece, dofs));
-    auto hypre = std::make_unique<DistributedHypreSolver>(*rows, options);
+    auto hypre = std::make_unique<DistributedHypreSolver>(*rows, spec.distributed);
     hypre->system().set_coordinates(mesh, dofs);
     solver = std::move(hypre);
+    apply_iteration_budget(*solver, spec.fixed_iterations);
   } else {
-    solver = make_linear_solver(serial_name);
+    solver = make_linear_solver(spec);
   }
   solver->set_discretization({&mesh, &dofs, piece ? nullptr : blocks});
   return solver;

@@ -24,19 +24,6 @@
 
 namespace hofem {
 
-struct DistributedSolverOptions {
-  std::string krylov = "pcg";  ///< "pcg" (symmetric positive definite systems) or "gmres"
-  std::string amg = "amg";     ///< a boomeramg_variant_names() entry
-  /// Rigid rotations as BoomerAMG interpolation vectors (GM-2 with nodal
-  /// coarsening, boomeramg.cpp measured its trade-off: fewer iterations, dearer
-  /// set-up and cycles). Needs the node coordinates (set_coordinates).
-  bool rigid_body_modes = false;
-  int gmres_restart = 50;
-};
-
-/// Throws std::invalid_argument naming the bad option.
-void validate(const DistributedSolverOptions& options);
-
 struct DistributedSolveResult {
   bool converged = false;
   int iterations = 0;
@@ -51,6 +38,7 @@ class DistributedLinearSystem {
   /// rows: the global numbering of this rank's local free DOFs (collective
   /// construction by distribute_dofs); kept by reference: it must outlive this.
   explicit DistributedLinearSystem(const DistributedDofs& rows, DistributedSolverOptions options = {});
+  explicit DistributedLinearSystem(DistributedDofs&&, DistributedSolverOptions = {}) = delete;  // kept by reference
   ~DistributedLinearSystem();
   DistributedLinearSystem(const DistributedLinearSystem&) = delete;
   DistributedLinearSystem& operator=(const DistributedLinearSystem&) = delete;
@@ -126,11 +114,10 @@ class DistributedHypreSolver final : public LinearSolver {
 /// The linear solver of a problem on `mesh` with `dofs`. Distributed (piece set,
 /// collective): the global rows of the piece's free DOFs are numbered into
 /// `rows` (which the solver refers to: keep it alive and unchanged while the
-/// solver lives) and hypre solves with `options`. Serial:
-/// make_linear_solver(serial_name), with `blocks` for block preconditioners.
+/// solver lives) and hypre solves with spec.distributed. Serial:
+/// make_linear_solver(spec) (resolved: not "auto"), with `blocks` for block preconditioners.
 std::unique_ptr<LinearSolver> make_problem_solver(const DistributedMesh* piece, std::unique_ptr<DistributedDofs>& rows,
-                                                  const std::string& serial_name,
-                                                  const DistributedSolverOptions& options, const Mesh& mesh,
-                                                  const DofMap& dofs, const std::vector<int>* blocks);
+                                                  const SolverSpec& spec, const Mesh& mesh, const DofMap& dofs,
+                                                  const std::vector<int>* blocks);
 
 }  // namespace hofem

@@ -276,11 +276,13 @@ KrylovResult gmres(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::Vec
   return res;
 }
 
-KrylovSolver::KrylovSolver(std::string method, std::string preconditioner, KrylovOptions options)
-    : method_(std::move(method)), M_(make_preconditioner(preconditioner)), options_(options) {
-  if (method_ != "cg" && method_ != "cr" && method_ != "minres" && method_ != "gmres")
-    throw std::invalid_argument(fmt::format("unknown Krylov method '{}' (valid: cg, cr, minres, gmres)", method_));
-  name_ = method_ + "+" + std::string(M_->name());
+KrylovSolver::KrylovSolver(SolverMethod method, std::string_view preconditioner, KrylovOptions options)
+    : method_(method), M_(make_preconditioner(preconditioner)), options_(options) {
+  if (method_ != SolverMethod::Cg && method_ != SolverMethod::Cr && method_ != SolverMethod::Minres &&
+      method_ != SolverMethod::Gmres)
+    throw std::invalid_argument(
+        fmt::format("KrylovSolver: '{}' is not a Krylov method (cg, cr, minres, gmres)", method_name(method_)));
+  name_ = std::string(method_name(method_)) + "+" + std::string(M_->name());
 }
 
 void KrylovSolver::analyze(const SparseMatrix&) { ++analyses_; }
@@ -313,10 +315,12 @@ void KrylovSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     options.rtol = 0.0;
     options.max_iterations = fixed_iterations_;
   }
-  if (method_ == "cg") last_ = conjugate_gradient(A, b, x, *M_, options);
-  else if (method_ == "cr") last_ = conjugate_residual(A, b, x, *M_, options);
-  else if (method_ == "minres") last_ = minres(A, b, x, *M_, options);
-  else last_ = gmres(A, b, x, *M_, options);
+  switch (method_) {
+    case SolverMethod::Cg: last_ = conjugate_gradient(A, b, x, *M_, options); break;
+    case SolverMethod::Cr: last_ = conjugate_residual(A, b, x, *M_, options); break;
+    case SolverMethod::Minres: last_ = minres(A, b, x, *M_, options); break;
+    default: last_ = gmres(A, b, x, *M_, options); break;  // the constructor admits only these four
+  }
   // A fixed budget accepts the iterate it reached; a breakdown (an indefinite
   // system) is still an error.
   const bool accepted = last_.converged || (fixed_iterations_ > 0 && last_.breakdown.empty() && x.allFinite());

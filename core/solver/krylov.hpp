@@ -16,12 +16,6 @@
 
 namespace hofem {
 
-struct KrylovOptions {
-  double rtol = 1e-8;        ///< converged when the true residual ||b - A x|| <= rtol ||b||
-  int max_iterations = 5000;
-  int restart = 50;          ///< GMRES(m)
-};
-
 struct KrylovResult {
   bool converged = false;
   int iterations = 0;
@@ -58,12 +52,12 @@ inline KrylovResult gmres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen
   return gmres(SparseMatrixOperator(A), b, x, M, opt);
 }
 
-/// A LinearSolver running one Krylov method ("cg", "cr", "minres", "gmres") with
-/// one preconditioner; factorize() sets the preconditioner up, solve() iterates
-/// from zero and throws std::runtime_error if it does not converge.
+/// A LinearSolver running one Krylov method (SolverMethod::Cg, Cr, Minres or
+/// Gmres) with one preconditioner; factorize() sets the preconditioner up,
+/// solve() iterates from zero and throws std::runtime_error if it does not converge.
 class KrylovSolver final : public LinearSolver {
  public:
-  KrylovSolver(std::string method, std::string preconditioner, KrylovOptions options = {});
+  KrylovSolver(SolverMethod method, std::string_view preconditioner, KrylovOptions options = {});
   std::string_view name() const override { return name_; }
   void analyze(const SparseMatrix& A) override;
   bool factorize(const SparseMatrix& A) override;
@@ -81,7 +75,8 @@ class KrylovSolver final : public LinearSolver {
   const Preconditioner& preconditioner() const { return *M_; }
 
  private:
-  std::string method_, name_;
+  SolverMethod method_;
+  std::string name_;
   std::unique_ptr<Preconditioner> M_;
   KrylovOptions options_;
   const SparseMatrix* A_ = nullptr;

@@ -41,20 +41,38 @@ class EigenLdltSolver final : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name) {
-  if (name == "cholmod") return std::make_unique<CholmodSolver>();
-  if (name == "eigen-ldlt") return std::make_unique<EigenLdltSolver>();
-  if (name == "umfpack") return std::make_unique<UmfpackSolver>();
-  if (name == "hypre-pcg+amg") return make_hypre_pcg_solver();
-  // "<krylov method>+<preconditioner>", e.g. "cg+ic0".
-  if (const size_t plus = name.find('+'); plus != std::string_view::npos) {
-    const std::string method(name.substr(0, plus)), pc(name.substr(plus + 1));
-    if ((method == "cg" || method == "cr" || method == "minres" || method == "gmres"))
-      return std::make_unique<KrylovSolver>(method, pc);
+namespace {
+
+std::unique_ptr<LinearSolver> make_unbudgeted(const SolverSpec& spec) {
+  if (!spec.method) throw std::logic_error("make_linear_solver: resolve \"auto\" first (resolve_linear_solver)");
+  switch (*spec.method) {
+    case SolverMethod::Cholmod: return std::make_unique<CholmodSolver>();
+    case SolverMethod::EigenLdlt: return std::make_unique<EigenLdltSolver>();
+    case SolverMethod::Umfpack: return std::make_unique<UmfpackSolver>();
+    case SolverMethod::HyprePcg: return make_hypre_pcg_solver();
+    case SolverMethod::Cg:
+    case SolverMethod::Cr:
+    case SolverMethod::Minres:
+    case SolverMethod::Gmres: return std::make_unique<KrylovSolver>(*spec.method, spec.preconditioner, spec.krylov);
   }
-  throw std::invalid_argument(fmt::format(
-      "unknown linear solver '{}' (valid: cholmod, umfpack, eigen-ldlt, hypre-pcg+amg, or <cg|cr|minres|gmres>+<{}>)", name,
-      fmt::join(preconditioner_names(), "|")));
+  throw std::logic_error("make_linear_solver: unknown SolverMethod");
+}
+
+}  // namespace
+
+void apply_iteration_budget(LinearSolver& solver, int k) {
+  if (k > 0 && !solver.set_fixed_iterations(k))
+    throw std::invalid_argument(fmt::format("krylov_iterations = {} needs a Krylov solver, not {}", k, solver.name()));
+}
+
+std::unique_ptr<LinearSolver> make_linear_solver(const SolverSpec& spec) {
+  std::unique_ptr<LinearSolver> solver = make_unbudgeted(spec);
+  apply_iteration_budget(*solver, spec.fixed_iterations);
+  return solver;
+}
+
+std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name) {
+  return make_linear_solver(SolverSpec::parse(name));
 }
 
 }  // namespace hofem

@@ -4,6 +4,7 @@
 // then factorises and solves many matrices with that pattern.
 #include "assembly/sparse_matrix.hpp"
 #include "solver/discretization.hpp"
+#include "solver/solver_spec.hpp"
 
 #include <Eigen/Core>
 
@@ -51,14 +52,18 @@ class LinearSolver {
   int factorizations_ = 0;
 };
 
-/// "cholmod" (supernodal Cholesky, SuiteSparse, 64-bit indices), "umfpack"
-/// (sparse LU, for nonsingular indefinite matrices), "eigen-ldlt"
-/// (Eigen's SimplicialLDLT, for comparison and small problems), or a Krylov
-/// method with a preconditioner, "<cg|cr|minres|gmres>+<preconditioner>"
-/// (solver/krylov.hpp, solver/preconditioner.hpp), or hypre's own PCG with
-/// BoomerAMG, "hypre-pcg+amg" (solver/hypre_pcg.hpp). Throws
-/// std::invalid_argument naming the valid choices.
+/// The solver a spec names (resolved: not "auto"): CHOLMOD (supernodal
+/// Cholesky, SuiteSparse, 64-bit indices), UMFPACK (sparse LU, for nonsingular
+/// indefinite matrices), Eigen's SimplicialLDLT (for comparison and small
+/// problems), a Krylov method with a preconditioner (solver/krylov.hpp,
+/// solver/preconditioner.hpp), or hypre's own PCG with BoomerAMG
+/// (solver/hypre_pcg.hpp); with the spec's fixed iteration budget, which only a
+/// Krylov solver takes (std::invalid_argument otherwise).
+std::unique_ptr<LinearSolver> make_linear_solver(const SolverSpec& spec);
+/// k > 0: solver.set_fixed_iterations(k), or std::invalid_argument naming the
+/// solver if it has no iterations to fix.
+void apply_iteration_budget(LinearSolver& solver, int k);
+/// make_linear_solver(SolverSpec::parse(name)).
 std::unique_ptr<LinearSolver> make_linear_solver(std::string_view name);
-std::vector<std::string> linear_solver_names();
 
 }  // namespace hofem

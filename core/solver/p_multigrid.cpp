@@ -58,8 +58,10 @@ bool PMultigridPreconditioner::check(const SparseMatrix& A) {
 // time.
 bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseMatrix<double>* blocks) {
   const DofMap& dofs = *discretization_.dofs;
-  if (mesh_for_ != discretization_.mesh || dofs_for_ != &dofs) {
-    const Mesh& mesh = *discretization_.mesh;
+  const Mesh& mesh = *discretization_.mesh;
+  const std::array<std::int64_t, 4> shape{static_cast<std::int64_t>(mesh.cell), mesh.order, mesh.num_nodes(),
+                                          mesh.num_elements()};
+  if (dofs.identity() == 0 || dofs.identity() != dofs_identity_ || shape != mesh_shape_) {
     std::vector<int> orders{mesh.order};
     if (options_.coarsening == PMultigridOptions::Coarsening::ByOne && mesh.cell == CellType::Tetrahedron)
       for (int q = mesh.order - 1; q >= 1; --q) orders.push_back(q);
@@ -71,8 +73,8 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseM
       error_ = std::string("pmg: ") + e.what();
       return false;
     }
-    mesh_for_ = discretization_.mesh;
-    dofs_for_ = &dofs;
+    dofs_identity_ = dofs.identity();
+    mesh_shape_ = shape;
     pattern_hash_ = 0;
     levels_.clear();
     levels_.resize(static_cast<size_t>(hierarchy_->num_levels() - 1));

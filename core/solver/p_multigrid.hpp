@@ -35,6 +35,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -112,9 +113,11 @@ class PMultigridPreconditioner final : public Preconditioner {
   void vcycle(std::size_t l, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
 
   PMultigridOptions options_;
-  // Built once per discretization (mesh and DOF map by address) and fine pattern.
-  const Mesh* mesh_for_ = nullptr;
-  const DofMap* dofs_for_ = nullptr;
+  // Built once per discretization and fine pattern. The discretization is known
+  // by its DOF map's identity (DofMap::identity: new for every map built, where
+  // an address is reused) and the shape of its mesh, which a DOF map is built for.
+  std::uint64_t dofs_identity_ = 0;
+  std::array<std::int64_t, 4> mesh_shape_{};  ///< cell, order, nodes, elements
   std::uint64_t pattern_hash_ = 0;
   const BlockSparseMatrix<double>* fine_blocks_ = nullptr;  ///< setup(A, blocks)'s blocks
   std::unique_ptr<PHierarchy> hierarchy_;

@@ -11,19 +11,22 @@ constexpr Eigen::Index kOrderOneDirectLimit = 30000;
 
 SolverChoice choose_linear_solver(const SystemTraits& t) {
   if (t.embedded)
-    return {"cholmod", fmt::format("finite cells ({} unknowns): direct, robust to small cut fractions", t.free_dofs)};
+    return {SolverSpec::parse("cholmod"), fmt::format("finite cells ({} unknowns): direct, robust to small cut fractions", t.free_dofs)};
   if (t.order >= 2)
-    return {"cg+pmg", fmt::format("order {} ({} unknowns): p-multigrid, iterations independent of the mesh", t.order,
+    return {SolverSpec::parse("cg+pmg"), fmt::format("order {} ({} unknowns): p-multigrid, iterations independent of the mesh", t.order,
                                   t.free_dofs)};
   if (t.free_dofs <= kOrderOneDirectLimit)
-    return {"cholmod", fmt::format("order 1, {} <= {} unknowns: direct is faster than AMG's set-up", t.free_dofs,
+    return {SolverSpec::parse("cholmod"), fmt::format("order 1, {} <= {} unknowns: direct is faster than AMG's set-up", t.free_dofs,
                                    kOrderOneDirectLimit)};
-  return {"cg+amg", fmt::format("order 1, {} > {} unknowns: algebraic multigrid", t.free_dofs, kOrderOneDirectLimit)};
+  return {SolverSpec::parse("cg+amg"), fmt::format("order 1, {} > {} unknowns: algebraic multigrid", t.free_dofs, kOrderOneDirectLimit)};
 }
 
-SolverChoice resolve_linear_solver(const std::string& name, const SystemTraits& traits) {
-  if (name == "auto") return choose_linear_solver(traits);
-  return {name, "given"};
+SolverChoice resolve_linear_solver(const SolverSpec& spec, const SystemTraits& traits) {
+  if (!spec.is_auto()) return {spec, "given"};
+  SolverChoice choice = choose_linear_solver(traits);
+  choice.spec.fixed_iterations = spec.fixed_iterations;
+  choice.spec.distributed = spec.distributed;
+  return choice;
 }
 
 }  // namespace hofem

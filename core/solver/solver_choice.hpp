@@ -18,6 +18,8 @@
 //    but cut cells with small volume fractions cost it iterations a conforming
 //    mesh does not, and at these sizes CHOLMOD is as fast as the best of them.
 //  - distributed runs do not ask: they always solve on hypre.
+#include "solver/solver_spec.hpp"
+
 #include <Eigen/Core>
 
 #include <string>
@@ -32,14 +34,15 @@ struct SystemTraits {
 };
 
 struct SolverChoice {
-  std::string solver;  ///< a name make_linear_solver() accepts
+  SolverSpec spec;     ///< resolved: a method, never "auto"
   std::string reason;  ///< one line, for logs and reports
 };
 
 /// The rules above.
 SolverChoice choose_linear_solver(const SystemTraits& traits);
 
-/// `name` itself, or the choice for `traits` when name is "auto".
-SolverChoice resolve_linear_solver(const std::string& name, const SystemTraits& traits);
+/// `spec` itself ("given"), or for "auto" the choice for `traits`, keeping the
+/// spec's iteration budget and distributed options.
+SolverChoice resolve_linear_solver(const SolverSpec& spec, const SystemTraits& traits);
 
 }  // namespace hofem

@@ -2,9 +2,8 @@
 // file of their own without the solvers: the scene reader validates names with
 // them, and its sanitized test build (verification/unit/CMakeLists.txt) should
 // not need hypre, CHOLMOD and every preconditioner to link.
-#include "solver/boomeramg.hpp"
-#include "solver/linear_solver.hpp"
 #include "solver/preconditioner.hpp"
+#include "solver/solver_spec.hpp"
 
 #include <string>
 #include <vector>

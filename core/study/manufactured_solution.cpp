@@ -132,13 +132,12 @@ MmsProblem::MmsProblem(const MmsCase& c) {
   dirichlet = {{m.node_set("boundary"), [this](const Eigen::Vector3d& X) { return ustar.value(X); }}};
   options.quadrature_degree = default_quadrature_degree(m.cell, m.order, linear);
   options.load_degree = 2 * m.order + 2;
-  options.linear_solver = c.linear_solver;
+  options.solver = c.solver;
   options.distributed = c.distributed;
-  options.distributed_solver = c.distributed_solver;
   // The discretisation error is >= 1e-7 relative at every size run here; the
   // nonlinear solve is converged to 1e-10 of the load so it does not pollute it.
   options.newton.rtol = 1e-10;
-  if (c.linear_solver == "auto" && !c.distributed) {
+  if (c.solver.is_auto() && !c.distributed) {
     // A fast iterative solver: solved to the accuracy the discretisation can use.
     // The linear tolerance follows (the one linear step of a linear problem and
     // each Newton step of a nonlinear one need no more than Newton's own test).

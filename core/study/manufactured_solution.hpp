@@ -43,17 +43,17 @@ struct MmsCase {
   int order = 1;
   int n = 4;                  ///< cubes per side
   bool perturbed = false;     ///< random interior-vertex perturbation (non-uniform mesh)
-  /// A make_linear_solver() name, or "auto": the fastest solver for the system
+  /// "auto" (the default): the fastest solver for the system
   /// (solver/solver_choice.hpp) and, when that is iterative, a tolerance tied to
-  /// the expected discretisation error (mms_algebraic_tolerance).
-  std::string linear_solver = "auto";
+  /// the expected discretisation error (mms_algebraic_tolerance). Distributed
+  /// runs solve with solver.distributed on hypre.
+  SolverSpec solver;
   std::string vtu;            ///< if set, write the solution (displacement, error) to this .vtu file
   /// > 0: Newton's residual tolerance and the linear one (iterative solvers)
   /// instead of the defaults (1e-10, or mms_algebraic_tolerance for "auto").
   double algebraic_rtol = 0.0;
-  /// Distributed over the MPI ranks (StaticOptions::distributed; linear_solver unused).
+  /// Distributed over the MPI ranks (StaticOptions::distributed).
   bool distributed = false;
-  DistributedSolverOptions distributed_solver{};  ///< hypre Krylov method, AMG variant, rigid-body modes
 };
 
 struct MmsResult {

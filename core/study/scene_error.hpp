@@ -30,6 +30,7 @@ class ReferenceMeasure {
   /// resolves the reference's own variation and halves the points of 2 p), a
   /// finite-cell reference's mass rules in its cut cells.
   ReferenceMeasure(const RecordedRun& reference, int subdivisions);
+  ReferenceMeasure(RecordedRun&&, int) = delete;  // kept by reference: a temporary would dangle
   const RecordedRun& run() const { return reference_; }
   const BodyQuadrature& quadrature() const { return quadrature_; }
   const TriangleSurface& surface(size_t state) const { return surfaces_.at(state); }

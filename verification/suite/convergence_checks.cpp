@@ -59,15 +59,15 @@ constexpr int kDirectReferenceLimit = 40000;
 // tolerance rule in mms_algebraic_tolerance aims at ~1e-4).
 void add_solver_switch_check(Report& report, const ConvergenceSeries& s, int n, const MmsResult& fast,
                              const std::string& run) {
-  MmsCase ref{s.problem, s.cell, s.order, n, s.perturbed, "cholmod", ""};
+  MmsCase ref{s.problem, s.cell, s.order, n, s.perturbed, SolverSpec::parse("cholmod"), ""};
   if (fast.dofs > kDirectReferenceLimit) {
-    ref.linear_solver = fast.linear_solver;
+    ref.solver = SolverSpec::parse(fast.linear_solver);
     ref.algebraic_rtol = 1e-12;
   }
   const MmsResult r = run_mms(ref);
   report.check("mms.solver_switch", run, std::abs(fast.l2_error / r.l2_error - 1.0), 0.01, Compare::AtMost,
                fmt::format("|L2 / L2_ref - 1|: {} L2 {:.6e}, {} L2 {:.6e} (the reference{})", fast.linear_solver,
-                           fast.l2_error, ref.linear_solver, r.l2_error,
+                           fast.l2_error, ref.solver.name(), r.l2_error,
                            ref.algebraic_rtol > 0.0 ? " at rtol 1e-12" : ", direct"));
 }
 
@@ -81,7 +81,7 @@ void add_convergence_checks(Report& report, const std::string& preset) {
       // The fastest solver ("auto": CG + p-multigrid from order 2) at a tolerance
       // tied to the discretisation error; the row's error is then checked against
       // a reference solve of the same mesh.
-      const MmsResult r = run_mms({s.problem, s.cell, s.order, n, s.perturbed, "auto", ""});
+      const MmsResult r = run_mms({s.problem, s.cell, s.order, n, s.perturbed, SolverSpec{}, ""});
       const std::string run = fmt::format("{}|n{}", series, n);
       report.measure("mms.l2_error", run, r.l2_error, fmt::format("dofs={} cells={}", r.dofs, r.cells));
       report.measure("mms.h1_error", run, r.h1_error);

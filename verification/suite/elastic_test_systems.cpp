@@ -42,7 +42,7 @@ PulledBodySolve solve_pulled_neohookean(const Mesh& mesh, const std::string& lin
   const auto mat = make_material("neohookean", LameParameters::from_young_poisson(1.0, 0.3));
   VectorField pull = [](const Eigen::Vector3d& X) { return Eigen::Vector3d(0.1 * X[0], 0.05 * X[1] * X[0], 0.0); };
   StaticOptions opt;
-  opt.linear_solver = linear_solver;
+  opt.solver = SolverSpec::parse(linear_solver);
   opt.newton.rtol = 1e-10;
   StaticElasticity p(mesh, *mat, {{mesh.node_set("xmin"), nullptr}, {mesh.node_set("xmax"), pull}}, nullptr, opt);
   const StaticReport r = p.solve();

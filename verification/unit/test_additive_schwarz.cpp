@@ -167,7 +167,7 @@ TEST(AdditiveSchwarz, CgAndMinresConvergeToTheCholmodSolution) {
     direct->solve(b, x_ref);
     KrylovOptions opt;
     opt.rtol = 1e-10;
-    for (const char* method : {"cg", "minres"}) {
+    for (const SolverMethod method : {SolverMethod::Cg, SolverMethod::Minres}) {
       KrylovSolver k(method, "schwarz", opt);
       k.set_discretization(s.discretization());
       ASSERT_TRUE(k.factorize(s.K)) << k.name();

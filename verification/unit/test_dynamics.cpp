@@ -229,7 +229,7 @@ TEST(StressTests, ImplicitEulerStiffNearlyIncompressibleCantilever) {
   o.dt = 1.0 / 30.0;
   o.density = 1000.0;
   o.gravity = Eigen::Vector3d(0, 0, -9.81);
-  o.linear_solver = "cholmod";  // the symbolic-analysis count below is a direct solver's
+  o.solver = SolverSpec::parse("cholmod");  // the symbolic-analysis count below is a direct solver's
   DynamicElasticity sim(m, *mat, {fixed_nodes(m.node_set("xmin"))}, o);
   for (int k = 0; k < 30; ++k) {
     const StepReport r = sim.step();

@@ -436,7 +436,7 @@ TEST(FiniteCell, AdditiveSchwarzBlocksCutCellsAndSolvesTheSystem) {
     StaticOptions o;
     o.element_rules = fc.element_rules();
     o.preconditioner_blocks = blocks;
-    o.linear_solver = solver;
+    o.solver = SolverSpec::parse(solver);
     StaticElasticity problem(background, *mat, {{background.node_set("xmin"), {}}}, gravity, o);
     ASSERT_TRUE(problem.solve().converged) << solver;
     if (reference.size() == 0) {

@@ -61,7 +61,7 @@ TEST(Krylov, EveryMethodAndPreconditionerAgreesWithCholmodOnSpd) {
   ASSERT_EQ(x_ref.size(), b.size());
   KrylovOptions opt;
   opt.rtol = 1e-10;
-  for (const char* method : {"cg", "cr", "minres", "gmres"})
+  for (const SolverMethod method : {SolverMethod::Cg, SolverMethod::Cr, SolverMethod::Minres, SolverMethod::Gmres})
     for (const std::string& pc : serial_preconditioners()) {
       KrylovSolver s(method, pc, opt);
       s.set_discretization(bar().discretization());
@@ -79,7 +79,7 @@ TEST(Krylov, PreconditioningReducesIterations) {
   const SparseMatrix K = stiffness();
   const Eigen::VectorXd b = rhs(K.rows());
   auto iterations = [&](const char* pc) {
-    KrylovSolver s("cg", pc);
+    KrylovSolver s(SolverMethod::Cg, pc);
     s.factorize(K);
     Eigen::VectorXd x;
     s.solve(b, x);
@@ -102,7 +102,7 @@ TEST(Krylov, FixedIterationsStopAfterExactlyKAndAcceptTheIterate) {
   const Eigen::VectorXd x_ref = cholmod_solution(K, b);
   ASSERT_EQ(x_ref.size(), b.size());
   auto energy_error = [&](const Eigen::VectorXd& x) { return (x - x_ref).dot(K * (x - x_ref)); };
-  KrylovSolver s("cg", "jacobi");
+  KrylovSolver s(SolverMethod::Cg, "jacobi");
   ASSERT_TRUE(s.set_fixed_iterations(3));
   ASSERT_TRUE(s.factorize(K));
   Eigen::VectorXd x;
@@ -279,7 +279,7 @@ TEST(Newton, EisenstatWalkerForcingTermsCutLinearIterations) {
   Eigen::VectorXd u[2];
   for (int k = 0; k < 2; ++k) {
     StaticOptions opt;
-    opt.linear_solver = "cg+block-jacobi";
+    opt.solver = SolverSpec::parse("cg+block-jacobi");
     opt.newton.rtol = 1e-10;
     opt.newton.eisenstat_walker = (k == 1);
     StaticElasticity p(m, *mat, {{m.node_set("xmin"), nullptr}, {m.node_set("xmax"), pull}}, nullptr, opt);

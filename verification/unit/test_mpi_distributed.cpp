@@ -151,7 +151,7 @@ TEST(DistributedSystem, ManufacturedSolutionMatchesSerial) {
       c.problem = problem;
       c.order = order;
       c.n = 3;  // 8 / 125 / 512 interior nodes for P1 / P2 / P3
-      c.linear_solver = "cholmod";  // the serial reference: direct, Newton to 1e-10
+      c.solver = SolverSpec::parse("cholmod");  // the serial reference: direct, Newton to 1e-10
       const hofem::MmsResult serial = hofem::run_mms(c);
       c.distributed = true;
       const hofem::MmsResult distributed = hofem::run_mms(c);
@@ -172,7 +172,7 @@ TEST(DistributedSystem, ManufacturedSolutionMatchesSerial) {
   c.order = 2;
   c.n = 3;
   c.perturbed = true;
-  c.linear_solver = "cholmod";
+  c.solver = SolverSpec::parse("cholmod");
   const hofem::MmsResult serial = hofem::run_mms(c);
   c.distributed = true;
   const hofem::MmsResult distributed = hofem::run_mms(c);

@@ -84,7 +84,7 @@ TEST(BoomerAmg, EveryVariantWithOurCgAgreesWithCholmod) {
     for (const std::string& variant : boomeramg_variant_names()) {
       KrylovOptions opt;
       opt.rtol = kRtol;
-      KrylovSolver cg("cg", variant, opt);
+      KrylovSolver cg(SolverMethod::Cg, variant, opt);
       cg.set_discretization(s.discretization());
       ASSERT_TRUE(cg.factorize(s.K)) << c.label << " " << variant;
       Eigen::VectorXd x;
@@ -128,7 +128,7 @@ TEST(BoomerAmg, IterationsGrowAtMostFiftyPercentOverTwoRefinements) {
       std::vector<int> iterations;
       for (int n : sizes) {
         const Elasticity& s = elasticity(CellType::Tetrahedron, order, n);
-        KrylovSolver cg("cg", variant);  // relative residual 1e-8, the default
+        KrylovSolver cg(SolverMethod::Cg, variant);  // relative residual 1e-8, the default
         ASSERT_TRUE(cg.factorize(s.K));
         Eigen::VectorXd x;
         cg.solve(s.b, x);
@@ -168,7 +168,7 @@ TEST(HyprePcg, AgreesWithCholmodAndStopsOnOurRelativeResidual) {
 
       KrylovOptions opt;
       opt.rtol = rtol;
-      KrylovSolver cg("cg", "amg", opt);
+      KrylovSolver cg(SolverMethod::Cg, "amg", opt);
       ASSERT_TRUE(cg.factorize(s.K));
       cg.solve(s.b, x);
       EXPECT_LE(std::abs(pcg->last_iterations() - cg.last_iterations()), 1)

@@ -233,6 +233,41 @@ TEST(Scenes, FixedKrylovBudgetAndVolumeRatioAreRecorded) {
   }
 }
 
+// A scene's solver is one SolverSpec: the serial choice, the Krylov budget and
+// hypre's options for distributed runs (which `hofem mms` takes as flags) all
+// come from the "solver" object; a bad distributed option names its key.
+TEST(Scenes, SolverObjectSetsEverySolverOption) {
+  const std::string head = R"({"name": "s", "mesh": {"box": {"min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}},
+      "material": {"model": "neohookean", "young": 1e4, "poisson": 0.3}, "integrator": "implicit-euler",
+      "dt": 0.01, "duration": 0.01, "solver": )";
+  const Scene s = parse_scene(head + R"({"linear": "gmres+ic0", "krylov_iterations": 7,
+      "distributed": {"krylov": "gmres", "amg": "amg-nodal", "rigid_body_modes": true, "gmres_restart": 30}}})",
+                              "solver.json");
+  const SolverSpec& spec = s.dynamics.solver;
+  EXPECT_EQ(spec.method, SolverMethod::Gmres);
+  EXPECT_EQ(spec.preconditioner, "ic0");
+  EXPECT_EQ(spec.name(), "gmres+ic0");
+  EXPECT_EQ(spec.fixed_iterations, 7);
+  EXPECT_EQ(spec.distributed.krylov, "gmres");
+  EXPECT_EQ(spec.distributed.amg, "amg-nodal");
+  EXPECT_TRUE(spec.distributed.rigid_body_modes);
+  EXPECT_EQ(spec.distributed.gmres_restart, 30);
+  EXPECT_TRUE(parse_scene(head + "{}}", "default.json").dynamics.solver.is_auto());
+  for (const auto& [bad, key] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"distributed": {"amg": "fast"}})", "solver.distributed.amg"},
+           {R"({"distributed": {"krylov": "bicgstab"}})", "solver.distributed.krylov"},
+           {R"({"distributed": {"gmres_restart": 0}})", "solver.distributed.gmres_restart"},
+           {R"({"distributed": {"coarsening": "hmis"}})", "coarsening"}}) {
+    try {
+      parse_scene(head + bad + "}", "bad.json");
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("bad.json: "), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
+}
+
 // Implicit without a floor: one symbolic analysis for the whole run, no floor
 // work; a static scene builds no mass at all.
 TEST(Scenes, ImplicitAndStaticRunsBuildOnlyWhatTheyNeed) {
