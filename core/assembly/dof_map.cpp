@@ -1,5 +1,8 @@
 #include "assembly/dof_map.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <atomic>
 #include <stdexcept>
 
@@ -23,6 +26,26 @@ DofMap::DofMap(int num_nodes, const std::vector<int>& constrained_nodes)
     free_index_[d] = num_free_++;
     free_dofs_.push_back(d);
   }
+}
+
+std::vector<int> node_set_union(const std::vector<std::vector<int>>& sets, int num_nodes, std::string_view what,
+                                bool disjoint) {
+  std::vector<int> set_of(static_cast<size_t>(std::max(num_nodes, 0)), -1);  // per node: the first set holding it
+  std::vector<int> nodes;
+  for (size_t k = 0; k < sets.size(); ++k)
+    for (int n : sets[k]) {
+      if (n < 0 || n >= num_nodes)
+        throw std::invalid_argument(
+            fmt::format("{} {}: node {} is out of range (the mesh has {} nodes)", what, k, n, num_nodes));
+      if (set_of[n] == -1) {
+        set_of[n] = static_cast<int>(k);
+        nodes.push_back(n);
+      } else if (disjoint && set_of[n] != static_cast<int>(k)) {
+        throw std::invalid_argument(fmt::format("{} {}: node {} is already in {} {}", what, k, n, what, set_of[n]));
+      }
+    }
+  std::sort(nodes.begin(), nodes.end());
+  return nodes;
 }
 
 Eigen::VectorXd DofMap::restrict(const Eigen::VectorXd& global) const {

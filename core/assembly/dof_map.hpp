@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 namespace hofem {
@@ -42,5 +43,13 @@ class DofMap {
   int num_free_ = 0;
   std::uint64_t identity_ = 0;
 };
+
+/// The union of node sets given on a mesh of `num_nodes` nodes, sorted and each
+/// node once, every id checked: one out of range is std::invalid_argument
+/// "<what> <k>: node <n> is out of range (the mesh has <num_nodes> nodes)"; with
+/// `disjoint`, so is a node in two sets ("<what> <k>: node <n> is already in
+/// <what> <j>"). The constrained nodes of the static and dynamic problems.
+std::vector<int> node_set_union(const std::vector<std::vector<int>>& sets, int num_nodes, std::string_view what,
+                                bool disjoint);
 
 }  // namespace hofem

@@ -11,7 +11,6 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -26,17 +25,14 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 // integrates anything for, held at rest).
 std::vector<int> constrained_nodes(const std::vector<PrescribedMotion>& motions, int num_nodes,
                                    const std::vector<int>& unsupported) {
-  std::set<int> seen;
-  for (size_t k = 0; k < motions.size(); ++k)
-    for (int n : motions[k].nodes) {
-      if (n < 0 || n >= num_nodes)
-        throw std::invalid_argument(
-            fmt::format("prescribed motion {}: node {} is out of range (the mesh has {} nodes)", k, n, num_nodes));
-      if (!seen.insert(n).second)
-        throw std::invalid_argument(fmt::format("prescribed motion {}: node {} already has a prescribed motion", k, n));
-    }
-  seen.insert(unsupported.begin(), unsupported.end());
-  return {seen.begin(), seen.end()};
+  std::vector<std::vector<int>> sets;
+  for (const PrescribedMotion& m : motions) sets.push_back(m.nodes);
+  std::vector<int> nodes = node_set_union(sets, num_nodes, "prescribed motion", true);
+  // Finite cells' unsupported nodes (held at rest) may be prescribed ones too.
+  nodes.insert(nodes.end(), unsupported.begin(), unsupported.end());
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
 }
 
 bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
@@ -110,7 +106,7 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
     if (dist_) dist_->nodes.sum(whole);
     const Eigen::VectorXd nodal = dofs_.restrict(whole);
     double min_mass = nodal.size() > 0 ? nodal.minCoeff() : 1.0;
-    if (dist_) MPI_Allreduce(MPI_IN_PLACE, &min_mass, 1, MPI_DOUBLE, MPI_MIN, dist_->comm);
+    if (dist_) min_mass = min_over_ranks(min_mass, dist_->comm);
     if (min_mass <= 0.0)
       throw std::invalid_argument(fmt::format(
           "dynamics: {} lumping gives a non-positive nodal mass ({:.3e}) for order {}; use HRZ lumping or the "
@@ -147,10 +143,8 @@ const DynamicsStats& DynamicElasticity::stats() const {
   // quadrature point of every element.
   const long long evaluations = stats_.energy_evaluations + stats_.gradient_evaluations + stats_.hessian_assemblies;
   stats_.polar_decompositions =
-      material_.needs_polar_decomposition()
-          ? evaluations * (dist_ ? dist_->local.global_elements : mesh_.num_elements()) *
-                static_cast<long long>(assembler_->rule().size())
-          : 0;
+      polar_decompositions(material_, evaluations, dist_ ? dist_->local.global_elements : mesh_.num_elements(),
+                           static_cast<long long>(assembler_->rule().size()));
   return stats_;
 }
 
@@ -255,7 +249,7 @@ Energies DynamicElasticity::energies() {
   if (options_.floor) e.floor = options_.floor->energy(x_, counted_nodes());
   if (dist_) {
     Eigen::Vector3d parts(e.kinetic, e.gravity, e.floor);
-    MPI_Allreduce(MPI_IN_PLACE, parts.data(), 3, MPI_DOUBLE, MPI_SUM, dist_->comm);
+    hofem::sum_over_ranks(parts, dist_->comm);
     e.kinetic = parts[0], e.gravity = parts[1], e.floor = parts[2];
   }
   return e;
@@ -265,7 +259,7 @@ Eigen::Vector3d DynamicElasticity::linear_momentum() const {
   const Eigen::VectorXd p = mass_times(v_);
   Eigen::Vector3d P = Eigen::Vector3d::Zero();
   for (int i = 0; i < mesh_.num_nodes(); ++i) P += p.segment<3>(3 * i);
-  if (dist_) MPI_Allreduce(MPI_IN_PLACE, P.data(), 3, MPI_DOUBLE, MPI_SUM, dist_->comm);  // shares of M v
+  if (dist_) hofem::sum_over_ranks(P, dist_->comm);  // shares of M v
   return P;
 }
 
@@ -273,7 +267,7 @@ Eigen::Vector3d DynamicElasticity::angular_momentum() const {
   const Eigen::VectorXd p = mass_times(v_);
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
   for (int i = 0; i < mesh_.num_nodes(); ++i) L += x_.segment<3>(3 * i).cross(p.segment<3>(3 * i));
-  if (dist_) MPI_Allreduce(MPI_IN_PLACE, L.data(), 3, MPI_DOUBLE, MPI_SUM, dist_->comm);
+  if (dist_) hofem::sum_over_ranks(L, dist_->comm);
   return L;
 }
 
@@ -461,8 +455,8 @@ StepReport DynamicElasticity::step() {
     int contacts = options_.floor->contacts(x_, counted_nodes());
     double depth = options_.floor->max_depth(x_);
     if (dist_) {
-      MPI_Allreduce(MPI_IN_PLACE, &contacts, 1, MPI_INT, MPI_SUM, dist_->comm);
-      MPI_Allreduce(MPI_IN_PLACE, &depth, 1, MPI_DOUBLE, MPI_MAX, dist_->comm);
+      contacts = hofem::sum_over_ranks(contacts, dist_->comm);
+      depth = max_over_ranks(depth, dist_->comm);
     }
     stats_.contact_node_steps += contacts;
     stats_.max_penetration = std::max(stats_.max_penetration, depth);

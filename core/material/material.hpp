@@ -74,6 +74,11 @@ class Material {
   LameParameters lame_;
 };
 
+/// Polar decompositions (SVDs of F) the material computes over `assemblies`
+/// evaluations of `elements` elements with `points` quadrature points each: one
+/// per point and evaluation for a material that needs them (corotated), else 0.
+long long polar_decompositions(const Material& material, long long assemblies, long long elements, long long points);
+
 /// Names accepted by make_material: "linear", "stvk", "corotated", "neohookean", "stable-neohookean".
 std::vector<std::string> material_names();
 /// Throws std::invalid_argument naming the valid choices for an unknown name.

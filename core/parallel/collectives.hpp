@@ -10,8 +10,11 @@
 namespace hofem {
 
 double sum_over_ranks(double value, MPI_Comm comm);
+int sum_over_ranks(int value, MPI_Comm comm);
 /// In place; every rank ends with the same (bitwise) sum.
-void sum_over_ranks(Eigen::VectorXd& values, MPI_Comm comm);
+void sum_over_ranks(Eigen::Ref<Eigen::VectorXd> values, MPI_Comm comm);
+double min_over_ranks(double value, MPI_Comm comm);
+double max_over_ranks(double value, MPI_Comm comm);
 /// True on every rank if it is true on any.
 bool any_rank(bool flag, MPI_Comm comm);
 

@@ -18,9 +18,15 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-std::vector<int> constrained_nodes(const std::vector<DirichletCondition>& bcs, std::vector<int> unsupported) {
-  std::vector<int> nodes = std::move(unsupported);
-  for (const auto& bc : bcs) nodes.insert(nodes.end(), bc.nodes.begin(), bc.nodes.end());
+// The Dirichlet nodes, each checked against the mesh of num_nodes nodes
+// (node_set_union), plus `unsupported` (finite cells: nodes no element
+// integrates, held fixed).
+std::vector<int> constrained_nodes(const std::vector<DirichletCondition>& bcs, int num_nodes,
+                                   const std::vector<int>& unsupported) {
+  std::vector<std::vector<int>> sets;
+  for (const DirichletCondition& bc : bcs) sets.push_back(bc.nodes);
+  std::vector<int> nodes = node_set_union(sets, num_nodes, "static problem: Dirichlet condition", false);
+  nodes.insert(nodes.end(), unsupported.begin(), unsupported.end());
   return nodes;
 }
 
@@ -33,14 +39,10 @@ StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, s
   // On the given mesh, so that messages name its element indices (and every
   // rank of a distributed run fails alike, none left waiting in a collective).
   validate_mesh(mesh);  // inverted / degenerate elements are rejected with their index
-  for (const auto& bc : dirichlet_)
-    for (int n : bc.nodes)
-      if (n < 0 || n >= mesh.num_nodes())
-        throw std::invalid_argument(
-            fmt::format("static problem: Dirichlet node {} is out of range (the mesh has {} nodes)", n, mesh.num_nodes()));
   // Finite cells: nodes no element integrates, decided on the global mesh (a
   // node a rank's own elements leave unsupported may be supported by another's).
-  std::vector<int> constrained = constrained_nodes(dirichlet_, unsupported_nodes(mesh, options_.element_rules));
+  std::vector<int> constrained =
+      constrained_nodes(dirichlet_, mesh.num_nodes(), unsupported_nodes(mesh, options_.element_rules));
   ElementRules rules = options_.element_rules;
   Eigen::VectorXd external = options_.external_load;
   if (external.size() > 0 && (external.size() != 3 * mesh.num_nodes() || !external.allFinite()))
@@ -88,14 +90,16 @@ StaticElasticity::StaticElasticity(std::unique_ptr<DistributedMesh> piece, const
   }
   if (any_rank(!problem.empty(), dist_->comm))
     throw MeshError(problem.empty() ? std::string("static problem: another rank's piece of the mesh is invalid") : problem);
+  std::vector<int> constrained;
   std::string bad_node;
-  for (const auto& bc : dirichlet_)
-    for (int n : bc.nodes)
-      if ((n < 0 || n >= m.num_nodes()) && bad_node.empty())
-        bad_node = fmt::format("static problem: Dirichlet node {} is out of range (the piece has {} nodes)", n, m.num_nodes());
+  try {
+    constrained = constrained_nodes(dirichlet_, m.num_nodes(), {});
+  } catch (const std::invalid_argument& e) {
+    bad_node = e.what();
+  }
   if (any_rank(!bad_node.empty(), dist_->comm))  // decided together: the set-up below is collective
     throw std::invalid_argument(bad_node.empty() ? std::string("static problem: a Dirichlet node is out of range on another rank") : bad_node);
-  finish_setup(constrained_nodes(dirichlet_, {}), {}, Eigen::VectorXd(), body_force);
+  finish_setup(constrained, {}, Eigen::VectorXd(), body_force);
   setup_seconds_hint_ = seconds_since(t0);
 }
 
@@ -308,6 +312,10 @@ StaticReport StaticElasticity::solve() {
   report.solve_seconds = std::max(0.0, seconds_since(t0) - assembly_seconds_);
   report.factorizations = solver_->factorizations();
   report.symbolic_analyses = solver_->analyses();
+  // The count the scenes report: one Hessian assembly per Newton iteration.
+  report.polar_decompositions =
+      polar_decompositions(material_, report.newton_iterations, dist_ ? dist_->local.global_elements : mesh_.num_elements(),
+                           static_cast<long long>(assembler_->rule().size()));
   report.linear_solver = dist_ ? "hypre" : solver_choice_.spec.name();
   report.linear_solver_reason = solver_choice_.reason;
   return report;

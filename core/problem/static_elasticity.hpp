@@ -60,6 +60,9 @@ struct StaticReport {
   double setup_seconds = 0.0;     ///< pattern, tabulation, load vector
   int factorizations = 0;
   int symbolic_analyses = 0;
+  /// SVDs of F computed by the material: one per quadrature point of every
+  /// element and Hessian assembly for corotated, none for the others.
+  long long polar_decompositions = 0;
   std::string linear_solver;         ///< the solver used ("auto" resolved; "hypre" when distributed)
   std::string linear_solver_reason;  ///< why ("given" when named by the caller)
   std::string message;

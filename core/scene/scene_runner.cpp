@@ -223,7 +223,7 @@ struct SceneRun {
 };
 
 // What a static solve built and evaluated (the static counterpart of stats_json).
-json static_stats_json(const StaticReport& r, long long polar_decompositions) {
+json static_stats_json(const StaticReport& r) {
   return {{"linear_solver", r.linear_solver},
           {"linear_solver_reason", r.linear_solver_reason},
           {"mass", "none (static)"},
@@ -234,7 +234,7 @@ json static_stats_json(const StaticReport& r, long long polar_decompositions) {
           {"newton_iterations", r.newton_iterations},
           {"linear_iterations", r.linear_iterations},
           {"load_steps", r.load_steps},
-          {"polar_decompositions", polar_decompositions},
+          {"polar_decompositions", r.polar_decompositions},
           {"assembly_seconds", r.assembly_seconds},
           {"solve_seconds", r.solve_seconds}};
 }
@@ -279,10 +279,7 @@ void SceneRun::run_static(std::vector<PrescribedMotion> motions) {
   const Eigen::VectorXd density = writer ? energy_density(energies, volumes) : Eigen::VectorXd();
   if (options.observer && writer && r.converged) options.observer(SceneState{mesh, emb, 1, 1.0, u});
   if (options.write_frames && writer) write_frame(out_dir, 0, mesh, u, Eigen::VectorXd(), density, emb, frames, 0.0);
-  const long long polar = material.needs_polar_decomposition() ? static_cast<long long>(r.newton_iterations) *
-                                                                   mesh.num_elements() * problem.assembler().rule().size()
-                                                             : 0;
-  st["built"] = static_stats_json(r, polar);
+  st["built"] = static_stats_json(r);
   if (piece) st["per_rank"] = to_json(gather_rank_stats(problem.rank_stats(), piece->comm));
 }
 

@@ -1,5 +1,6 @@
 #include "solver/distributed_system.hpp"
 
+#include "parallel/collectives.hpp"
 #include "parallel/mpi_runtime.hpp"
 #include "solver/boomeramg.hpp"
 #include "solver/hypre_matrix.hpp"
@@ -64,7 +65,7 @@ void DistributedLinearSystem::set_coordinates(const Mesh& mesh, const DofMap& do
   Eigen::Vector4d sums = Eigen::Vector4d::Zero();
   for (Eigen::Index i = 0; i < n; ++i)
     if (rows_.free.owned(static_cast<int>(i))) sums += mesh.nodes.col(dofs.free_dofs()[i] / 3).homogeneous();
-  MPI_Allreduce(MPI_IN_PLACE, sums.data(), 4, MPI_DOUBLE, MPI_SUM, rows_.free.comm());
+  sum_over_ranks(sums, rows_.free.comm());
   const Eigen::Vector3d centre = sums.head<3>() / std::max(sums[3], 1.0);
   const Eigen::MatrixXd local = rigid_rotations({&mesh, &dofs, nullptr}, &centre);
   modes_.resize(rows_.owned_rows, 3);
@@ -214,9 +215,7 @@ DistributedHypreSolver::DistributedHypreSolver(const DistributedDofs& rows, Dist
 bool DistributedHypreSolver::factorize(const SparseMatrix& A) {
   error_.clear();
   // Every rank must agree (the set-up is collective): a non-finite entry anywhere stops all.
-  int bad = A.coeffs().allFinite() ? 0 : 1, any = 0;
-  MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_LOR, system_.rows().free.comm());
-  if (any) {
+  if (any_rank(!A.coeffs().allFinite(), system_.rows().free.comm())) {
     error_ = fmt::format("{}: the matrix has non-finite entries", name_);
     return false;
   }
