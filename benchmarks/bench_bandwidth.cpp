@@ -150,7 +150,7 @@ void BM_PmgIteration(benchmark::State& state, int order, int n) {
   const Eigen::VectorXd b = dofs.restrict(assembler.body_force_vector(p.body_force, p.options.load_degree));
   const BlockSparseMatrix<double> blocks(K);
   PMultigridPreconditioner pmg;
-  pmg.set_discretization({&p.mesh, &dofs});
+  pmg.set_mesh_view({&p.mesh, &dofs});
   if (!pmg.setup(K, blocks)) {
     state.SkipWithError(pmg.last_error().c_str());
     return;

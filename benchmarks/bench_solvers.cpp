@@ -73,7 +73,7 @@ struct Sample {
 
 Sample solve_once(const LinearSystem& sys, std::unique_ptr<LinearSolver> solver) {
   Sample s;
-  solver->set_discretization({&sys.mesh(), &sys.dofs});
+  solver->set_mesh_view({&sys.mesh(), &sys.dofs});
   solver->set_relative_tolerance(kRelativeTolerance);
   auto* krylov = dynamic_cast<KrylovSolver*>(solver.get());
   const auto t0 = Clock::now();

@@ -93,7 +93,7 @@ double time_solver_setup(StaticElasticity& problem, const std::string& solver) {
   double best = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 2; ++k) {
     auto s = make_linear_solver(solver);
-    s->set_discretization({&problem.mesh(), &problem.dofs()});
+    s->set_mesh_view({&problem.mesh(), &problem.dofs()});
     const auto t0 = Clock::now();
     if (!s->factorize(K)) return std::nan("");
     best = std::min(best, seconds_since(t0));

@@ -23,36 +23,32 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 
 // The prescribed nodes, plus `unsupported` (finite cells: nodes no element
 // integrates anything for, held at rest).
-std::vector<int> constrained_nodes(const std::vector<PrescribedMotion>& motions, int num_nodes,
-                                   const std::vector<int>& unsupported) {
+// The prescribed nodes, each checked against a mesh of num_nodes nodes and in
+// one motion only (node_set_union). The Discretization adds the finite cells'
+// unsupported nodes, held at rest.
+std::vector<int> constrained_nodes(const std::vector<PrescribedMotion>& motions, int num_nodes) {
   std::vector<std::vector<int>> sets;
   for (const PrescribedMotion& m : motions) sets.push_back(m.nodes);
-  std::vector<int> nodes = node_set_union(sets, num_nodes, "prescribed motion", true);
-  // Finite cells' unsupported nodes (held at rest) may be prescribed ones too.
-  nodes.insert(nodes.end(), unsupported.begin(), unsupported.end());
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  return nodes;
+  return node_set_union(sets, num_nodes, "prescribed motion", true);
 }
 
 bool all_finite(const Eigen::VectorXd& v) { return v.allFinite(); }
 
-// Distributed runs keep only this rank's piece of the mesh.
-std::unique_ptr<DistributedMesh> piece_of(const Mesh& mesh, const DynamicsOptions& o) {
-  if (!o.distributed) return nullptr;
-  if (o.integrator != Integrator::ImplicitEuler || o.rayleigh_beta > 0.0)
-    throw std::invalid_argument("dynamics: distributed runs support implicit Euler without stiffness damping (so far)");
-  ensure_hypre();
-  validate(o.solver.distributed);
-  return std::make_unique<DistributedMesh>(distribute_mesh(MPI_COMM_WORLD, mesh));
+// The body's discretization; distributed runs keep only this rank's piece of the mesh.
+std::unique_ptr<Discretization> discretization_of(const Mesh& mesh, const DynamicsOptions& o) {
+  if (o.distributed) {
+    if (o.integrator != Integrator::ImplicitEuler || o.rayleigh_beta > 0.0)
+      throw std::invalid_argument("dynamics: distributed runs support implicit Euler without stiffness damping (so far)");
+    validate(o.solver.distributed);
+  }
+  return std::make_unique<Discretization>(mesh, o.distributed, o.element_rules, o.quadrature_degree);
 }
 
-// Prescribed node sets checked on the given mesh, then renumbered onto the piece.
+// Prescribed node sets checked on the given mesh, then renumbered onto mesh() (the piece).
 std::vector<PrescribedMotion> on_piece(std::vector<PrescribedMotion> motions, const Mesh& mesh,
-                                       const DistributedMesh* piece) {
-  constrained_nodes(motions, mesh.num_nodes(), {});  // throws for out-of-range or repeated nodes
-  if (piece)
-    for (PrescribedMotion& m : motions) m.nodes = to_local_nodes(piece->local, m.nodes);
+                                       const Discretization& disc) {
+  constrained_nodes(motions, mesh.num_nodes());  // throws for out-of-range or repeated nodes
+  for (PrescribedMotion& m : motions) m.nodes = disc.local_nodes(m.nodes);
   return motions;
 }
 
@@ -60,23 +56,13 @@ std::vector<PrescribedMotion> on_piece(std::vector<PrescribedMotion> motions, co
 
 DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material, std::vector<PrescribedMotion> motions,
                                      DynamicsOptions options)
-    : dist_(piece_of(mesh, options)),
-      mesh_(dist_ ? dist_->mesh() : mesh),
+    : disc_(discretization_of(mesh, options)),
+      mesh_(disc_->mesh()),
+      dofs_(disc_->dofs()),
       material_(material),
-      motions_(on_piece(std::move(motions), mesh, dist_.get())),
-      options_(std::move(options)),
-      // Finite cells: unsupported nodes are decided on the given mesh (a node
-      // this rank's elements leave unsupported may be another rank's to move).
-      unsupported_(dist_ ? to_local_nodes(dist_->local, unsupported_nodes(mesh, options_.element_rules))
-                         : unsupported_nodes(mesh, options_.element_rules)),
-      dofs_(mesh_.num_nodes(), constrained_nodes(motions_, mesh_.num_nodes(), unsupported_)) {
-  rules_ = options_.element_rules;
-  if (dist_) {
-    rules_.stiffness = restrict_to_elements(dist_->local, rules_.stiffness);
-    rules_.mass = restrict_to_elements(dist_->local, rules_.mass);
-    owned_nodes_.resize(mesh_.num_nodes());
-    for (int n = 0; n < mesh_.num_nodes(); ++n) owned_nodes_[n] = dist_->local.owns(n);
-  }
+      motions_(on_piece(std::move(motions), mesh, *disc_)),
+      options_(std::move(options)) {
+  disc_->constrain(constrained_nodes(motions_, mesh_.num_nodes()));
   released_.assign(motions_.size(), 0);
   const DynamicsOptions& o = options_;
   if (!(o.dt > 0.0) || !std::isfinite(o.dt)) throw std::invalid_argument(fmt::format("dynamics: dt must be > 0 (got {})", o.dt));
@@ -96,17 +82,15 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
   lumping_ = o.lumping.value_or(mesh.order == 1 ? MassLumping::RowSum : MassLumping::HRZ);
   // Consistent mass: N_i N_j has degree 2p on affine cells (2p per direction on hexes).
   mass_degree_ = 2 * mesh.order;
-  assembler_ = std::make_unique<Assembler>(mesh_, dofs_, o.quadrature_degree);
-  assembler_->set_element_rules(rules_);
   if (mass_kind_ == MassKind::Lumped) {
-    lumped_ = assembler_->lumped_mass(o.density, mass_degree_, lumping_);
+    lumped_ = disc_->assembler().lumped_mass(o.density, mass_degree_, lumping_);
     stats_.mass = lumping_ == MassLumping::RowSum ? "lumped (row-sum)" : "lumped (HRZ)";
     // Over the free DOFs: unsupported finite-cell nodes (constrained) have none.
     Eigen::VectorXd whole = lumped_;  // distributed: this rank's elements' share, completed here
-    if (dist_) dist_->nodes.sum(whole);
+    disc_->complete_nodal(whole);
     const Eigen::VectorXd nodal = dofs_.restrict(whole);
     double min_mass = nodal.size() > 0 ? nodal.minCoeff() : 1.0;
-    if (dist_) min_mass = min_over_ranks(min_mass, dist_->comm);
+    min_mass = disc_->min(min_mass);
     if (min_mass <= 0.0)
       throw std::invalid_argument(fmt::format(
           "dynamics: {} lumping gives a non-positive nodal mass ({:.3e}) for order {}; use HRZ lumping or the "
@@ -126,7 +110,7 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
   f_gravity_ = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
   if (o.gravity.squaredNorm() > 0.0) {
     const Eigen::Vector3d rho_g = o.density * o.gravity;
-    f_gravity_ = assembler_->body_force_vector([&](const Eigen::Vector3d&) { return rho_g; }, mass_degree_);
+    f_gravity_ = disc_->assembler().body_force_vector([&](const Eigen::Vector3d&) { return rho_g; }, mass_degree_);
   }
   const double extent = (mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff()).norm();  // the whole body
   elastic_force_scale_ = (2.0 * material.lame().mu + material.lame().lambda) * extent * extent;
@@ -143,32 +127,29 @@ const DynamicsStats& DynamicElasticity::stats() const {
   // quadrature point of every element.
   const long long evaluations = stats_.energy_evaluations + stats_.gradient_evaluations + stats_.hessian_assemblies;
   stats_.polar_decompositions =
-      polar_decompositions(material_, evaluations, dist_ ? dist_->local.global_elements : mesh_.num_elements(),
-                           static_cast<long long>(assembler_->rule().size()));
+      polar_decompositions(material_, evaluations, disc_->global_elements(),
+                           static_cast<long long>(disc_->assembler().rule().size()));
   return stats_;
 }
 
 RankStats DynamicElasticity::rank_stats() const {
-  if (!dist_ || !rows_ || !solver_) throw std::logic_error("DynamicElasticity::rank_stats: not a distributed run that has stepped");
-  return hofem::rank_stats(*dist_, *rows_, *assembler_, *solver_);
+  if (!solver_) throw std::logic_error("DynamicElasticity::rank_stats: not a distributed run that has stepped");
+  return disc_->rank_stats(*solver_);
 }
 
 void DynamicElasticity::ensure_consistent_mass() {
   if (M_.size() > 0) return;
-  M_ = assembler_->mass_matrix(options_.density, mass_degree_);
+  M_ = disc_->assembler().mass_matrix(options_.density, mass_degree_);
   ++stats_.mass_matrices_built;
 }
 
 void DynamicElasticity::ensure_linear_solver() {
   if (solver_) return;
-  const SolverChoice choice = dist_ ? SolverChoice{options_.solver, "distributed"}
-                                    : resolve_linear_solver(options_.solver,
-                                                            {dofs_.num_free(), mesh_.order, !rules_.empty()});
-  stats_.linear_solver = dist_ ? "hypre" : choice.spec.name();
+  const SolverChoice choice = disc_->choose_solver(options_.solver);
+  stats_.linear_solver = disc_->solver_name(choice);
   stats_.linear_solver_reason = choice.reason;
-  solver_ = make_problem_solver(dist_.get(), rows_, choice.spec, mesh_, dofs_,
-                                options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
-  K_ = assembler_->new_matrix();
+  solver_ = disc_->make_solver(choice.spec, options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
+  K_ = disc_->assembler().new_matrix();
 }
 
 void DynamicElasticity::set_velocity(const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& v) {
@@ -214,7 +195,7 @@ Eigen::VectorXd DynamicElasticity::mass_times(const Eigen::VectorXd& r) const {
 }
 
 double DynamicElasticity::elastic_energy(const Eigen::VectorXd& x) const {
-  return sum_over_ranks(assembler_->energy(material_, x));
+  return disc_->sum(disc_->assembler().energy(material_, x));
 }
 
 // The consistent mass over ALL DOFs (prescribed ones too: kinetic energy and the
@@ -225,7 +206,7 @@ Eigen::VectorXd DynamicElasticity::consistent_mass_times(const Eigen::VectorXd& 
   if (M_all_.size() == 0) {
     const DofMap all(mesh_.num_nodes(), {});
     Assembler a(mesh_, all, options_.quadrature_degree);
-    a.set_element_rules(rules_);
+    a.set_element_rules(disc_->rules());
     M_all_ = a.mass_matrix(options_.density, mass_degree_);
     ++stats_.mass_matrices_built;
   }
@@ -246,12 +227,10 @@ Energies DynamicElasticity::energies() {
   stats_.assembly_seconds += since(t0);
   ++stats_.energy_evaluations;
   e.gravity = -f_gravity_.dot(displacement());
-  if (options_.floor) e.floor = options_.floor->energy(x_, counted_nodes());
-  if (dist_) {
-    Eigen::Vector3d parts(e.kinetic, e.gravity, e.floor);
-    hofem::sum_over_ranks(parts, dist_->comm);
-    e.kinetic = parts[0], e.gravity = parts[1], e.floor = parts[2];
-  }
+  if (options_.floor) e.floor = options_.floor->energy(x_, disc_->counted_nodes());
+  Eigen::Vector3d parts(e.kinetic, e.gravity, e.floor);
+  disc_->sum(parts);  // this rank's shares
+  e.kinetic = parts[0], e.gravity = parts[1], e.floor = parts[2];
   return e;
 }
 
@@ -259,7 +238,7 @@ Eigen::Vector3d DynamicElasticity::linear_momentum() const {
   const Eigen::VectorXd p = mass_times(v_);
   Eigen::Vector3d P = Eigen::Vector3d::Zero();
   for (int i = 0; i < mesh_.num_nodes(); ++i) P += p.segment<3>(3 * i);
-  if (dist_) hofem::sum_over_ranks(P, dist_->comm);  // shares of M v
+  disc_->sum(P);  // shares of M v
   return P;
 }
 
@@ -267,12 +246,12 @@ Eigen::Vector3d DynamicElasticity::angular_momentum() const {
   const Eigen::VectorXd p = mass_times(v_);
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
   for (int i = 0; i < mesh_.num_nodes(); ++i) L += x_.segment<3>(3 * i).cross(p.segment<3>(3 * i));
-  if (dist_) hofem::sum_over_ranks(L, dist_->comm);
+  disc_->sum(L);
   return L;
 }
 
 double DynamicElasticity::kinetic_energy() const {
-  return sum_over_ranks(0.5 * v_.dot(mass_times(v_)));
+  return disc_->sum(0.5 * v_.dot(mass_times(v_)));
 }
 
 double DynamicElasticity::estimate_stable_dt(int iterations) {
@@ -341,20 +320,18 @@ void DynamicElasticity::implicit_euler_adaptive(StepReport& report, double h, in
 // A released node set becomes free: new DOF map, and with it a new assembler
 // (sparsity pattern), consistent mass and linear solver. Happens once per set.
 void DynamicElasticity::release_due_motions() {
-  // Decided by time, not by whether this rank has nodes of the set: the
-  // rebuild below is collective when distributed.
+  // Decided by time, so every rank releases the same sets at the same step and
+  // asks together whether any rank has nodes of them: the rebuild is collective.
   bool any = false;
   for (size_t k = 0; k < motions_.size(); ++k)
     if (!released_[k] && t_ >= motions_[k].release - 1e-9 * options_.dt) {
       released_[k] = 1;
-      any = any || !motions_[k].nodes.empty() || dist_;
+      any = disc_->any(!motions_[k].nodes.empty()) || any;  // collective: every rank releases k now
       motions_[k].nodes.clear();
     }
   if (!any) return;
   ++stats_.releases;
-  dofs_ = DofMap(mesh_.num_nodes(), constrained_nodes(motions_, mesh_.num_nodes(), unsupported_));
-  assembler_ = std::make_unique<Assembler>(mesh_, dofs_, options_.quadrature_degree);
-  assembler_->set_element_rules(rules_);
+  disc_->constrain(constrained_nodes(motions_, mesh_.num_nodes()));  // a new DOF map and pattern
   moving_boundary_ = false;
   for (const PrescribedMotion& m : motions_) moving_boundary_ = moving_boundary_ || (m.moves() && !m.nodes.empty());
   if (mass_kind_ == MassKind::Consistent) {
@@ -414,7 +391,7 @@ StepReport DynamicElasticity::step() {
   if (report.ok) {
     t_ = t_old + options_.dt;
     bool finite = all_finite(x_) && all_finite(v_);
-    if (dist_) finite = !any_rank(!finite, dist_->comm);  // every rank rolls back together
+    finite = !disc_->any(!finite);  // every rank rolls back together
     if (!finite) {
       report.ok = false;
       report.message = fmt::format("t = {:.6g}: non-finite positions or velocities", t_);
@@ -452,12 +429,8 @@ StepReport DynamicElasticity::step() {
     }
   }
   if (options_.floor && report.ok) {
-    int contacts = options_.floor->contacts(x_, counted_nodes());
-    double depth = options_.floor->max_depth(x_);
-    if (dist_) {
-      contacts = hofem::sum_over_ranks(contacts, dist_->comm);
-      depth = max_over_ranks(depth, dist_->comm);
-    }
+    const int contacts = disc_->sum(options_.floor->contacts(x_, disc_->counted_nodes()));
+    const double depth = disc_->max(options_.floor->max_depth(x_));
     stats_.contact_node_steps += contacts;
     stats_.max_penetration = std::max(stats_.max_penetration, depth);
   }

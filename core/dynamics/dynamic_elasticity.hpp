@@ -20,6 +20,7 @@
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
 #include "solver/rank_figures.hpp"
+#include "solver/discretization.hpp"
 #include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/newton.hpp"
@@ -109,7 +110,7 @@ class DynamicElasticity {
   DynamicElasticity(Mesh&&, const Material&, std::vector<PrescribedMotion>, DynamicsOptions) = delete;
   DynamicElasticity(const Mesh&, Material&&, std::vector<PrescribedMotion>, DynamicsOptions) = delete;
   ~DynamicElasticity();
-  DynamicElasticity(const DynamicElasticity&) = delete;  // the assembler refers to dofs_
+  DynamicElasticity(const DynamicElasticity&) = delete;  // members refer to disc_
   DynamicElasticity& operator=(const DynamicElasticity&) = delete;
 
   /// Initial velocity v(X) of the free nodes (prescribed ones follow their motion).
@@ -141,12 +142,12 @@ class DynamicElasticity {
   const DynamicsStats& stats() const;
   const DynamicsOptions& options() const { return options_; }
   const DofMap& dofs() const { return dofs_; }
-  const Assembler& assembler() const { return *assembler_; }
+  const Assembler& assembler() const { return disc_->assembler(); }
   /// The mesh the body lives on: the given one, or (distributed) this rank's piece.
   const Mesh& mesh() const { return mesh_; }
   /// Distributed runs: the piece, its halo and the global numbering; else null.
-  const DistributedMesh* distributed_mesh() const { return dist_.get(); }
-  const DistributedDofs* distributed_dofs() const { return rows_.get(); }
+  const DistributedMesh* distributed_mesh() const { return disc_->piece(); }
+  const DistributedDofs* distributed_dofs() const { return disc_->rows(); }
   /// Distributed, after the first step: this rank's figures (parallel/rank_stats.hpp).
   /// Throws std::logic_error otherwise.
   RankStats rank_stats() const;
@@ -161,15 +162,6 @@ class DynamicElasticity {
   Eigen::VectorXd consistent_mass_times(const Eigen::VectorXd& r) const;
   /// Elastic energy of the whole body (summed over ranks when distributed).
   double elastic_energy(const Eigen::VectorXd& x) const;
-  // Distributed runs (identities otherwise): sums over ranks of per-rank
-  // values; a free-DOF vector of partial sums completed; the nodes whose nodal
-  // terms this rank counts (null: all).
-  double sum_over_ranks(double value) const { return dist_ ? dist_->sum(value) : value; }
-  void complete_free(Eigen::VectorXd& partial) const {
-    if (rows_) rows_->free.sum(partial);
-  }
-  const std::vector<char>* counted_nodes() const { return dist_ ? &owned_nodes_ : nullptr; }
-  MPI_Comm comm() const { return dist_ ? dist_->comm : MPI_COMM_WORLD; }
   Eigen::VectorXd stiffness_times(const Eigen::VectorXd& x, const Eigen::VectorXd& w);
   void impose_motion(double t, Eigen::VectorXd& x, Eigen::VectorXd* v) const;
   double kinetic_energy() const;
@@ -185,21 +177,18 @@ class DynamicElasticity {
   void release_due_motions();
   void ensure_consistent_mass();
 
-  std::unique_ptr<DistributedMesh> dist_;  ///< distributed: this rank's piece (before mesh_, which refers to it)
-  const Mesh& mesh_;                       ///< the given mesh, or the piece
-  std::unique_ptr<DistributedDofs> rows_;  ///< distributed: global rows of the free DOFs (rebuilt with the DOF map)
-  std::vector<char> owned_nodes_;          ///< distributed: per node of the piece, 1 if this rank owns it
+  /// The mesh (or this rank's piece), element rules, DOF map, assembler, global
+  /// numbering and reductions over ranks; first, as everything below refers to it.
+  std::unique_ptr<Discretization> disc_;
+  const Mesh& mesh_;    ///< disc_'s: the given mesh, or the piece
+  const DofMap& dofs_;  ///< disc_'s (rebuilt in place when a node set is released)
   const Material& material_;
   std::vector<PrescribedMotion> motions_;
   DynamicsOptions options_;
   MassKind mass_kind_;
   MassLumping lumping_;
   int mass_degree_;
-  ElementRules rules_;            ///< options_.element_rules on mesh_ (restricted to the piece)
   std::vector<char> released_;    ///< per motion: released (every rank alike, whether or not it has its nodes)
-  std::vector<int> unsupported_;  ///< finite-cell nodes without stiffness or mass (held at rest)
-  DofMap dofs_;
-  std::unique_ptr<Assembler> assembler_;
   Eigen::VectorXd lumped_;        ///< lumped mass per DOF (lumped runs)
   SparseMatrix M_;                ///< consistent mass over the free DOFs (when needed)
   mutable SparseMatrix M_all_;    ///< consistent mass over all DOFs (built on first product)

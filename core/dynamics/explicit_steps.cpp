@@ -16,7 +16,7 @@ double since(std::chrono::steady_clock::time_point t0) {
 Eigen::VectorXd DynamicElasticity::internal_forces(const Eigen::VectorXd& x) {
   const auto t0 = std::chrono::steady_clock::now();
   Eigen::VectorXd g;
-  assembler_->gradient(material_, x, g);
+  disc_->assembler().gradient(material_, x, g);
   ++stats_.gradient_evaluations;
   stats_.assembly_seconds += since(t0);
   return -g;

@@ -54,10 +54,10 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
   double energy(const Eigen::VectorXd& y) override {
     set(y);
     const auto t0 = std::chrono::steady_clock::now();
-    const double psi = s_.assembler_->energy(s_.material_, x_);
+    const double psi = s_.disc_->assembler().energy(s_.material_, x_);
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.energy_evaluations;
-    const double e = s_.sum_over_ranks(std::isfinite(psi) ? psi + quadratic(y) + floor_energy()
+    const double e = s_.disc_->sum(std::isfinite(psi) ? psi + quadratic(y) + floor_energy()
                                                           : std::numeric_limits<double>::infinity());
     return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
   }
@@ -66,27 +66,25 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd g_all;
     double psi = 0.0;
-    on_all_ranks_or_throw<MaterialDomainError>(s_.dist_ != nullptr, s_.comm(), kOutside,
-                                               [&] { psi = s_.assembler_->gradient(s_.material_, x_, g_all); });
+    s_.disc_->on_all_ranks_or_throw<MaterialDomainError>(kOutside, [&] { psi = s_.disc_->assembler().gradient(s_.material_, x_, g_all); });
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.gradient_evaluations;
     g = s_.dofs_.restrict(g_all - s_.f_gravity_ - floor_forces()) + quadratic_gradient(y);
-    s_.complete_free(g);
-    return s_.sum_over_ranks(psi + quadratic(y) + floor_energy());
+    s_.disc_->complete_free(g);
+    return s_.disc_->sum(psi + quadratic(y) + floor_energy());
   }
   void hessian(const Eigen::VectorXd& y, Eigen::VectorXd& g, SparseMatrix& K, bool project) override {
     set(y);
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd g_all;
-    on_all_ranks_or_throw<MaterialDomainError>(s_.dist_ != nullptr, s_.comm(), kOutside,
-                                               [&] { s_.assembler_->hessian(s_.material_, x_, g_all, K, project); });
+    s_.disc_->on_all_ranks_or_throw<MaterialDomainError>(kOutside, [&] { s_.disc_->assembler().hessian(s_.material_, x_, g_all, K, project); });
     s_.stats_.assembly_seconds += since(t0);
     ++s_.stats_.hessian_assemblies;
     g = s_.dofs_.restrict(g_all - s_.f_gravity_ - floor_forces()) + quadratic_gradient(y);
-    s_.complete_free(g);
+    s_.disc_->complete_free(g);
     // Distributed: K is this rank's share (its elements' mass and stiffness, its
     // owned nodes' floor blocks); hypre sums the shares.
-    if (s_.options_.floor) s_.options_.floor->add_hessian(x_, s_.dofs_, K, s_.counted_nodes());
+    if (s_.options_.floor) s_.options_.floor->add_hessian(x_, s_.dofs_, K, s_.disc_->counted_nodes());
     if (s_.mass_kind_ == MassKind::Consistent) {
       add_scaled(K, inertia_, s_.M_);
     } else {
@@ -104,12 +102,12 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
   double force_scale(const Eigen::VectorXd& g0) const override {
     const double h = s_.options_.dt;
     Eigen::VectorXd inertial = mass_free(z_tilde_), gravity = s_.dofs_.restrict(s_.f_gravity_);
-    s_.complete_free(inertial);  // shares -> whole forces before their norms
-    s_.complete_free(gravity);
+    s_.disc_->complete_free(inertial);  // shares -> whole forces before their norms
+    s_.disc_->complete_free(gravity);
     return std::max({norm(g0), norm(gravity), norm(inertial) / (h * h), s_.elastic_force_scale_});
   }
   double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const override {
-    return s_.rows_ ? s_.rows_->free.dot(a, b) : a.dot(b);
+    return s_.disc_->dot_free(a, b);
   }
 
  private:
@@ -140,13 +138,13 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
   double floor_energy() const {
     if (!s_.options_.floor) return 0.0;
     ++s_.stats_.floor_evaluations;
-    return s_.options_.floor->energy(x_, s_.counted_nodes());
+    return s_.options_.floor->energy(x_, s_.disc_->counted_nodes());
   }
   Eigen::VectorXd floor_forces() const {
     Eigen::VectorXd f = Eigen::VectorXd::Zero(x_.size());
     if (s_.options_.floor) {
       ++s_.stats_.floor_evaluations;
-      s_.options_.floor->add_forces(x_, f, s_.counted_nodes());
+      s_.options_.floor->add_forces(x_, f, s_.disc_->counted_nodes());
     }
     return f;
   }
@@ -174,9 +172,9 @@ void DynamicElasticity::step_implicit_euler(StepReport& report) {
   }
   SparseMatrix K_n;
   if (options_.rayleigh_beta > 0.0) {  // D's stiffness part, frozen at the step's start
-    K_n = assembler_->new_matrix();
+    K_n = disc_->assembler().new_matrix();
     Eigen::VectorXd g;
-    assembler_->hessian(material_, x_, g, K_n, true);
+    disc_->assembler().hessian(material_, x_, g, K_n, true);
     ++stats_.hessian_assemblies;
   }
   IncrementalPotential problem(*this, x_new, y_n, z_tilde, coupling, K_n.size() > 0 ? &K_n : nullptr);
@@ -222,7 +220,7 @@ void DynamicElasticity::step_semi_implicit(StepReport& report) {
   impose_motion(t_ + h, x_new, &v_new);
   auto t0 = std::chrono::steady_clock::now();
   Eigen::VectorXd g;
-  assembler_->hessian(material_, x_new, g, K_, true);
+  disc_->assembler().hessian(material_, x_new, g, K_, true);
   ++stats_.hessian_assemblies;
   Eigen::VectorXd f = f_gravity_ - g;
   if (options_.floor) {

@@ -18,69 +18,48 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// The Dirichlet nodes, each checked against the mesh of num_nodes nodes
-// (node_set_union), plus `unsupported` (finite cells: nodes no element
-// integrates, held fixed).
-std::vector<int> constrained_nodes(const std::vector<DirichletCondition>& bcs, int num_nodes,
-                                   const std::vector<int>& unsupported) {
+// The Dirichlet nodes, each checked against a mesh of num_nodes nodes
+// (node_set_union). The Discretization adds the finite cells' unsupported ones.
+std::vector<int> constrained_nodes(const std::vector<DirichletCondition>& bcs, int num_nodes) {
   std::vector<std::vector<int>> sets;
   for (const DirichletCondition& bc : bcs) sets.push_back(bc.nodes);
-  std::vector<int> nodes = node_set_union(sets, num_nodes, "static problem: Dirichlet condition", false);
-  nodes.insert(nodes.end(), unsupported.begin(), unsupported.end());
-  return nodes;
+  return node_set_union(sets, num_nodes, "static problem: Dirichlet condition", false);
 }
 
 }  // namespace
 
 StaticElasticity::StaticElasticity(const Mesh& mesh, const Material& material, std::vector<DirichletCondition> dirichlet,
                                    VectorField body_force, StaticOptions options)
-    : mesh_(mesh), material_(material), dirichlet_(std::move(dirichlet)), options_(std::move(options)) {
+    : material_(material), dirichlet_(std::move(dirichlet)), options_(std::move(options)) {
   const auto t0 = Clock::now();
   // On the given mesh, so that messages name its element indices (and every
   // rank of a distributed run fails alike, none left waiting in a collective).
   validate_mesh(mesh);  // inverted / degenerate elements are rejected with their index
-  // Finite cells: nodes no element integrates, decided on the global mesh (a
-  // node a rank's own elements leave unsupported may be supported by another's).
-  std::vector<int> constrained =
-      constrained_nodes(dirichlet_, mesh.num_nodes(), unsupported_nodes(mesh, options_.element_rules));
-  ElementRules rules = options_.element_rules;
-  Eigen::VectorXd external = options_.external_load;
+  constrained_nodes(dirichlet_, mesh.num_nodes());  // throws for a node out of range
+  const Eigen::VectorXd& external = options_.external_load;
   if (external.size() > 0 && (external.size() != 3 * mesh.num_nodes() || !external.allFinite()))
     throw std::invalid_argument(fmt::format("static problem: external_load needs {} finite entries (got {})",
                                             3 * mesh.num_nodes(), external.size()));
-  if (options_.distributed) {
-    // From here on this rank sees only its piece of the mesh.
-    ensure_hypre();
-    validate(options_.solver.distributed);
-    dist_ = std::make_unique<DistributedMesh>(distribute_mesh(MPI_COMM_WORLD, mesh));
-    const LocalMesh& local = dist_->local;
-    constrained = to_local_nodes(local, constrained);
-    for (auto& bc : dirichlet_) bc.nodes = to_local_nodes(local, bc.nodes);
-    rules.stiffness = restrict_to_elements(local, rules.stiffness);
-    rules.mass = restrict_to_elements(local, rules.mass);
-    if (external.size() > 0) {
-      Eigen::VectorXd mine(3 * local.mesh.num_nodes());
-      for (int i = 0; i < local.mesh.num_nodes(); ++i) mine.segment<3>(3 * i) = external.segment<3>(3 * local.global_node[i]);
-      external = std::move(mine);
-    }
-  }
-  finish_setup(constrained, rules, external, body_force);
+  validate(options_.solver.distributed);
+  // From here on a distributed rank sees only its piece of the mesh.
+  disc_ = std::make_unique<Discretization>(mesh, options_.distributed, options_.element_rules, options_.quadrature_degree);
+  for (auto& bc : dirichlet_) bc.nodes = disc_->local_nodes(bc.nodes);
+  finish_setup(constrained_nodes(dirichlet_, disc_->mesh().num_nodes()), disc_->local_nodal(external), body_force);
   setup_seconds_hint_ = seconds_since(t0);
 }
 
 StaticElasticity::StaticElasticity(std::unique_ptr<DistributedMesh> piece, const Material& material,
                                    std::vector<DirichletCondition> dirichlet, VectorField body_force,
                                    StaticOptions options)
-    : mesh_(piece->mesh()), dist_(std::move(piece)), material_(material), dirichlet_(std::move(dirichlet)),
-      options_(std::move(options)) {
+    : material_(material), dirichlet_(std::move(dirichlet)), options_(std::move(options)) {
   const auto t0 = Clock::now();
   options_.distributed = true;
-  ensure_hypre();
   validate(options_.solver.distributed);
   if (!options_.element_rules.stiffness.empty() || !options_.element_rules.mass.empty() ||
       options_.external_load.size() > 0)
     throw std::invalid_argument("static problem: element rules and external loads need the global mesh (the other constructor)");
-  const Mesh& m = dist_->mesh();
+  disc_ = std::make_unique<Discretization>(std::move(piece), options_.quadrature_degree);
+  const Mesh& m = disc_->mesh();
   // Each rank checks its own piece; all learn whether any failed (the message is the failing rank's).
   std::string problem;
   try {
@@ -88,34 +67,31 @@ StaticElasticity::StaticElasticity(std::unique_ptr<DistributedMesh> piece, const
   } catch (const MeshError& e) {
     problem = e.what();
   }
-  if (any_rank(!problem.empty(), dist_->comm))
+  if (disc_->any(!problem.empty()))
     throw MeshError(problem.empty() ? std::string("static problem: another rank's piece of the mesh is invalid") : problem);
   std::vector<int> constrained;
   std::string bad_node;
   try {
-    constrained = constrained_nodes(dirichlet_, m.num_nodes(), {});
+    constrained = constrained_nodes(dirichlet_, m.num_nodes());
   } catch (const std::invalid_argument& e) {
     bad_node = e.what();
   }
-  if (any_rank(!bad_node.empty(), dist_->comm))  // decided together: the set-up below is collective
+  if (disc_->any(!bad_node.empty()))  // decided together: the set-up below is collective
     throw std::invalid_argument(bad_node.empty() ? std::string("static problem: a Dirichlet node is out of range on another rank") : bad_node);
-  finish_setup(constrained, {}, Eigen::VectorXd(), body_force);
+  finish_setup(constrained, Eigen::VectorXd(), body_force);
   setup_seconds_hint_ = seconds_since(t0);
 }
 
-void StaticElasticity::finish_setup(const std::vector<int>& constrained, const ElementRules& rules,
-                                    const Eigen::VectorXd& external, const VectorField& body_force) {
-  const Mesh& m = this->mesh();
-  dofs_ = DofMap(m.num_nodes(), constrained);
-  assembler_ = std::make_unique<Assembler>(m, dofs_, options_.quadrature_degree);
-  assembler_->set_element_rules(rules);
-  solver_choice_ = dist_ ? SolverChoice{options_.solver, "distributed"}
-                         : resolve_linear_solver(options_.solver, {dofs_.num_free(), m.order, !rules.empty()});
-  solver_ = make_problem_solver(dist_.get(), rows_, solver_choice_.spec, m, dofs_,
-                                options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
+void StaticElasticity::finish_setup(const std::vector<int>& constrained, const Eigen::VectorXd& external,
+                                    const VectorField& body_force) {
+  Discretization& d = *disc_;
+  const Mesh& m = d.mesh();
+  d.constrain(constrained);
+  solver_choice_ = d.choose_solver(options_.solver);
+  solver_ = d.make_solver(solver_choice_.spec, options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
   const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * m.order + 2;
-  f_ext_ = body_force ? assembler_->body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * m.num_nodes());
-  if (dist_) dist_->nodes.sum(f_ext_);  // each rank integrated its own elements
+  f_ext_ = body_force ? d.assembler().body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * m.num_nodes());
+  d.complete_nodal(f_ext_);  // each rank integrated its own elements
   if (external.size() > 0) f_ext_ += external;
   u_dirichlet_ = Eigen::VectorXd::Zero(3 * m.num_nodes());
   for (const auto& bc : dirichlet_)
@@ -126,20 +102,18 @@ void StaticElasticity::finish_setup(const std::vector<int>& constrained, const E
   assembly_seconds_ = 0.0;
 }
 
-RankStats StaticElasticity::rank_stats() const {
-  if (!dist_) throw std::logic_error("StaticElasticity::rank_stats: not a distributed problem");
-  return hofem::rank_stats(*dist_, *rows_, *assembler_, *solver_);
-}
+RankStats StaticElasticity::rank_stats() const { return disc_->rank_stats(*solver_); }
 
 double StaticElasticity::external_work() const {
   // Consistent vectors: owned nodes only, summed over ranks (each DOF once).
-  return dist_ ? dist_->nodes.dot(f_ext_, u_full_) : f_ext_.dot(u_full_);
+  return disc_->dot_nodal(f_ext_, u_full_);
 }
 
 void StaticElasticity::set_state(const Eigen::VectorXd& u_free) {
-  for (int d : dofs_.constrained_dofs()) u_full_[d] = load_ * u_dirichlet_[d];
-  const auto& free = dofs_.free_dofs();
-  for (int i = 0; i < dofs_.num_free(); ++i) u_full_[free[i]] = u_free[i];
+  const DofMap& dofs = disc_->dofs();
+  for (int d : dofs.constrained_dofs()) u_full_[d] = load_ * u_dirichlet_[d];
+  const auto& free = dofs.free_dofs();
+  for (int i = 0; i < dofs.num_free(); ++i) u_full_[free[i]] = u_free[i];
   const Mesh& m = mesh();
   x_ = Eigen::Map<const Eigen::VectorXd>(m.nodes.data(), 3 * m.num_nodes()) + u_full_;
 }
@@ -147,8 +121,7 @@ void StaticElasticity::set_state(const Eigen::VectorXd& u_free) {
 double StaticElasticity::energy(const Eigen::VectorXd& u) {
   set_state(u);
   const auto t0 = Clock::now();
-  double e = assembler_->energy(material_, x_);
-  if (dist_) e = dist_->sum(e);  // each rank integrated its own elements
+  const double e = disc_->sum(disc_->assembler().energy(material_, x_));  // each rank integrated its own elements
   assembly_seconds_ += seconds_since(t0);
   return e - load_ * external_work();
 }
@@ -159,23 +132,20 @@ double StaticElasticity::gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) 
   double e = std::numeric_limits<double>::infinity();
   bool outside = false;
   try {
-    on_all_ranks_or_throw<MaterialDomainError>(dist_ != nullptr, dist_ ? dist_->comm : MPI_COMM_WORLD,
-                                               "outside the material's domain",
-                                               [&] { e = assembler_->gradient(material_, x_, g_full_); });
+    disc_->on_all_ranks_or_throw<MaterialDomainError>(
+        "outside the material's domain", [&] { e = disc_->assembler().gradient(material_, x_, g_full_); });
   } catch (const MaterialDomainError&) {
     outside = true;
   }
   if (outside) {
-    g.setZero(dofs_.num_free());
+    g.setZero(disc_->dofs().num_free());
     assembly_seconds_ += seconds_since(t0);
     return std::numeric_limits<double>::infinity();
   }
-  if (dist_) {
-    e = dist_->sum(e);
-    dist_->nodes.sum(g_full_);  // partial nodal forces -> full, on owners and ghosts alike
-  }
+  e = disc_->sum(e);
+  disc_->complete_nodal(g_full_);  // partial nodal forces -> full, on owners and ghosts alike
   assembly_seconds_ += seconds_since(t0);
-  g = dofs_.restrict(g_full_ - load_ * f_ext_);
+  g = disc_->dofs().restrict(g_full_ - load_ * f_ext_);
   return e - load_ * external_work();
 }
 
@@ -183,12 +153,12 @@ void StaticElasticity::hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, Spa
   set_state(u);
   const auto t0 = Clock::now();
   // Distributed: this rank's share of K (its elements, over its piece); forces completed.
-  on_all_ranks_or_throw<MaterialDomainError>(dist_ != nullptr, dist_ ? dist_->comm : MPI_COMM_WORLD,
-                                             "static problem: an element left the material's domain on some rank",
-                                             [&] { assembler_->hessian(material_, x_, g_full_, K, project); });
-  if (dist_) dist_->nodes.sum(g_full_);
+  disc_->on_all_ranks_or_throw<MaterialDomainError>(
+      "static problem: an element left the material's domain on some rank",
+      [&] { disc_->assembler().hessian(material_, x_, g_full_, K, project); });
+  disc_->complete_nodal(g_full_);
   assembly_seconds_ += seconds_since(t0);
-  g = dofs_.restrict(g_full_ - load_ * f_ext_);
+  g = disc_->dofs().restrict(g_full_ - load_ * f_ext_);
 }
 
 double StaticElasticity::force_scale(const Eigen::VectorXd& g0) const {
@@ -197,7 +167,7 @@ double StaticElasticity::force_scale(const Eigen::VectorXd& g0) const {
   // increment, measured by the predictor), and the first residual. Relative to
   // this, ||g|| <= rtol * scale does not depend on units or mesh size; a problem
   // loaded only through its boundary (zero body force) still has a scale.
-  const double s = std::max({load_ * norm(dofs_.restrict(f_ext_)), step_force_, norm(g0)});
+  const double s = std::max({load_ * norm(disc_->dofs().restrict(f_ext_)), step_force_, norm(g0)});
   return s > 0.0 ? s : 1.0;
 }
 
@@ -274,7 +244,7 @@ StaticReport StaticElasticity::solve() {
   report.setup_seconds = setup_seconds_hint_;
   const auto t0 = Clock::now();
   assembly_seconds_ = 0.0;
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(dofs_.num_free());
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(disc_->dofs().num_free());
   // Adaptive load stepping: a failed step is retried at half the size (up to
   // max_load_halvings times in a row); after a success the step doubles again.
   double done = 0.0, step = 1.0;
@@ -314,9 +284,9 @@ StaticReport StaticElasticity::solve() {
   report.symbolic_analyses = solver_->analyses();
   // The count the scenes report: one Hessian assembly per Newton iteration.
   report.polar_decompositions =
-      polar_decompositions(material_, report.newton_iterations, dist_ ? dist_->local.global_elements : mesh_.num_elements(),
-                           static_cast<long long>(assembler_->rule().size()));
-  report.linear_solver = dist_ ? "hypre" : solver_choice_.spec.name();
+      polar_decompositions(material_, report.newton_iterations, disc_->global_elements(),
+                           static_cast<long long>(disc_->assembler().rule().size()));
+  report.linear_solver = disc_->solver_name(solver_choice_);
   report.linear_solver_reason = solver_choice_.reason;
   return report;
 }

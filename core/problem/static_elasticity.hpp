@@ -10,6 +10,7 @@
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
 #include "solver/rank_figures.hpp"
+#include "solver/discretization.hpp"
 #include "solver/distributed_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/newton.hpp"
@@ -90,46 +91,42 @@ class StaticElasticity final : public NonlinearProblem {
   /// Displacement of every node of mesh(), 3 per node (valid after solve()).
   const Eigen::VectorXd& displacement() const { return u_full_; }
   /// The mesh the problem lives on: the given one, or (distributed) this rank's piece.
-  const Mesh& mesh() const { return dist_ ? dist_->mesh() : mesh_; }
+  const Mesh& mesh() const { return disc_->mesh(); }
   /// Distributed runs: the piece, its halo and the global numbering; else null.
-  const DistributedMesh* distributed_mesh() const { return dist_.get(); }
-  const DistributedDofs* distributed_dofs() const { return rows_.get(); }
+  const DistributedMesh* distributed_mesh() const { return disc_->piece(); }
+  const DistributedDofs* distributed_dofs() const { return disc_->rows(); }
   /// Distributed: this rank's figures (mesh piece, halo, matrix, AMG and Krylov
   /// timings) so far; collective-free. Serial: throws std::logic_error.
   RankStats rank_stats() const;
   /// Free DOFs over all ranks.
-  long long global_free_dofs() const { return rows_ ? rows_->global_rows : dofs_.num_free(); }
-  const Assembler& assembler() const { return *assembler_; }
-  const DofMap& dofs() const { return dofs_; }
+  long long global_free_dofs() const { return disc_->global_free_dofs(); }
+  const Assembler& assembler() const { return disc_->assembler(); }
+  const DofMap& dofs() const { return disc_->dofs(); }
 
   // NonlinearProblem over the free DOFs (load factor applied).
-  int size() const override { return dofs_.num_free(); }
+  int size() const override { return disc_->dofs().num_free(); }
   double energy(const Eigen::VectorXd& u) override;
   double gradient(const Eigen::VectorXd& u, Eigen::VectorXd& g) override;
   void hessian(const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K, bool project) override;
   double force_scale(const Eigen::VectorXd& g0) const override;
-  double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const override {
-    return rows_ ? rows_->free.dot(a, b) : a.dot(b);
-  }
+  double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const override { return disc_->dot_free(a, b); }
 
  private:
   void set_state(const Eigen::VectorXd& u_free);  // fills x_ and u_full_
   double external_work() const;                   // f_ext . u over the whole body
-  // The DOF map, assembler, solver and load on mesh() (the piece when distributed).
-  void finish_setup(const std::vector<int>& constrained, const ElementRules& rules, const Eigen::VectorXd& external,
-                    const VectorField& body_force);
+  // The DOF map (with `constrained`, ids on mesh()), assembler, solver and load on
+  // mesh() (the piece when distributed).
+  void finish_setup(const std::vector<int>& constrained, const Eigen::VectorXd& external, const VectorField& body_force);
   /// The tangent predictor from load `from` to `to` at state u (converged at `from`).
   Eigen::VectorXd predict(const Eigen::VectorXd& u, double from, double to);
   /// The step of a constant-tangent (quadratic) problem from u to the equilibrium at load `to`.
   Eigen::VectorXd linear_step(const Eigen::VectorXd& u, double to);
-  const Mesh& mesh_;  ///< the given mesh (the piece, for the piece constructor)
-  std::unique_ptr<DistributedMesh> dist_;  ///< distributed: this rank's piece (mesh() is its mesh)
-  std::unique_ptr<DistributedDofs> rows_;  ///< distributed: global rows of the piece's free DOFs
+  /// The mesh (or this rank's piece), DOF map, assembler, global numbering and
+  /// reductions; before solver_, which refers to its DOF map and numbering.
+  std::unique_ptr<Discretization> disc_;
   const Material& material_;
   std::vector<DirichletCondition> dirichlet_;
   StaticOptions options_;
-  DofMap dofs_;
-  std::unique_ptr<Assembler> assembler_;
   SolverChoice solver_choice_;  ///< options_.solver resolved
   std::unique_ptr<LinearSolver> solver_;
   Eigen::VectorXd f_ext_;     ///< consistent body-force vector at full load (all DOFs)

@@ -132,8 +132,8 @@ struct BlockInverter {
 AdditiveSchwarzPreconditioner::AdditiveSchwarzPreconditioner(AdditiveSchwarzOptions options)
     : options_(std::move(options)) {}
 
-void AdditiveSchwarzPreconditioner::set_discretization(const Discretization& d) {
-  discretization_ = d;
+void AdditiveSchwarzPreconditioner::set_mesh_view(const MeshView& d) {
+  mesh_view_ = d;
   blocks_built_ = ready_ = false;
   map_rows_ = map_nonzeros_ = -1;
 }
@@ -150,12 +150,12 @@ Eigen::Map<const Eigen::MatrixXd> AdditiveSchwarzPreconditioner::block_inverse(i
 // Block index lists R_K of the selected elements (in element order), and for
 // every free DOF the slots of the blocks that hold it.
 bool AdditiveSchwarzPreconditioner::build_blocks() {
-  const Mesh& mesh = *discretization_.mesh;
-  const DofMap& dofs = *discretization_.dofs;
-  // Own option first, then the discretization's (finite cells), then all elements.
-  const bool from_discretization = options_.elements.empty() && discretization_.block_elements;
-  std::vector<int> selected = from_discretization ? *discretization_.block_elements : options_.elements;
-  if (selected.empty() && !from_discretization) {
+  const Mesh& mesh = *mesh_view_.mesh;
+  const DofMap& dofs = *mesh_view_.dofs;
+  // Own option first, then the mesh view's (finite cells), then all elements.
+  const bool from_mesh_view = options_.elements.empty() && mesh_view_.block_elements;
+  std::vector<int> selected = from_mesh_view ? *mesh_view_.block_elements : options_.elements;
+  if (selected.empty() && !from_mesh_view) {
     selected.resize(mesh.num_elements());
     for (int e = 0; e < mesh.num_elements(); ++e) selected[e] = e;
   }
@@ -245,13 +245,13 @@ bool AdditiveSchwarzPreconditioner::entry_map_matches(const SparseMatrix& A) con
 bool AdditiveSchwarzPreconditioner::setup(const SparseMatrix& A) {
   error_.clear();
   ready_ = false;
-  if (!discretization_.valid()) {
-    error_ = "schwarz: needs the mesh and DOF map (set_discretization) before setup";
+  if (!mesh_view_.valid()) {
+    error_ = "schwarz: needs the mesh and DOF map (set_mesh_view) before setup";
     return false;
   }
-  if (A.rows() != discretization_.dofs->num_free() || A.cols() != A.rows()) {
+  if (A.rows() != mesh_view_.dofs->num_free() || A.cols() != A.rows()) {
     error_ = fmt::format("schwarz: matrix is {}x{} but the DOF map has {} free DOFs", A.rows(), A.cols(),
-                         discretization_.dofs->num_free());
+                         mesh_view_.dofs->num_free());
     return false;
   }
   for (Eigen::Index c = 0; c < A.outerSize(); ++c)

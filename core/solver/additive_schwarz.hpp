@@ -22,7 +22,7 @@
 //
 // Caches and when they are rebuilt:
 //  - block index lists R_K and, per DOF, where its block entries lie: once per
-//    set_discretization() (on the next setup());
+//    set_mesh_view() (on the next setup());
 //  - the map from each block entry to its position in A's value array: when
 //    A's size or number of nonzeros changes, or an entry is found moved;
 //  - S_K (dense, symmetric): every setup().
@@ -39,7 +39,7 @@ namespace hofem {
 
 struct AdditiveSchwarzOptions {
   /// Elements contributing a block (ids into mesh.elements); empty = those the
-  /// discretization names (Discretization::block_elements), or all if it names none.
+  /// mesh view names (MeshView::block_elements), or all if it names none.
   std::vector<int> elements;
   /// Relative eigenvalue threshold of eq. 14 (the paper's ~1e-13).
   double epsilon = 1e-13;
@@ -54,8 +54,8 @@ class AdditiveSchwarzPreconditioner final : public Preconditioner {
   explicit AdditiveSchwarzPreconditioner(AdditiveSchwarzOptions options = {});
 
   std::string_view name() const override { return "schwarz"; }
-  void set_discretization(const Discretization& d) override;
-  /// Fails (with last_error()) without a discretization, on a size mismatch, an
+  void set_mesh_view(const MeshView& d) override;
+  /// Fails (with last_error()) without a mesh view, on a size mismatch, an
   /// element id out of range, a non-finite entry in A, a zero block or a zero
   /// diagonal entry of an uncovered DOF.
   bool setup(const SparseMatrix& A) override;

@@ -151,7 +151,7 @@ void BoomerAmg::apply(HYPRE_ParCSRMatrix A, HYPRE_ParVector b, HYPRE_ParVector x
   hypre_check(HYPRE_BoomerAMGSolve(solver_, A, b, x), "HYPRE_BoomerAMGSolve");
 }
 
-Eigen::MatrixXd rigid_rotations(const Discretization& d, const Eigen::Vector3d* given_centre) {
+Eigen::MatrixXd rigid_rotations(const MeshView& d, const Eigen::Vector3d* given_centre) {
   const Eigen::Vector3d centre = given_centre ? *given_centre : Eigen::Vector3d(d.mesh->nodes.rowwise().mean());
   const std::vector<int>& free = d.dofs->free_dofs();
   Eigen::MatrixXd R = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(free.size()), 3);
@@ -175,7 +175,7 @@ bool BoomerAmgPreconditioner::setup(const SparseMatrix& A) {
   rows_ = A.rows();
   if (rows_ == 0) return ready_ = true;
   Eigen::MatrixXd modes;
-  if (amg_.options().interp_vec_variant > 0) modes = rigid_rotations(discretization_);
+  if (amg_.options().interp_vec_variant > 0) modes = rigid_rotations(mesh_view_);
   try {
     ensure_hypre();
     amg_.reset();  // the old hierarchy refers to the matrix about to be replaced
@@ -203,12 +203,12 @@ std::string BoomerAmgPreconditioner::check(const SparseMatrix& A) const {
   if (std::string p = hypre_matrix_problem(A); !p.empty()) return p;
   const int nf = amg_.options().num_functions;
   if (A.rows() % nf != 0) return fmt::format("{} unknowns are not {} per node", A.rows(), nf);
-  if (amg_.options().interp_vec_variant > 0 && !discretization_.valid())
-    return "rigid-body modes need set_discretization() (mesh and DOF map)";
-  if (!discretization_.valid() || nf != 3) return {};
+  if (amg_.options().interp_vec_variant > 0 && !mesh_view_.valid())
+    return "rigid-body modes need set_mesh_view() (mesh and DOF map)";
+  if (!mesh_view_.valid() || nf != 3) return {};
   // hypre assigns unknown i to function i % num_functions: the free DOFs must be
   // whole nodes in x, y, z order (DofMap constrains whole nodes, so they are).
-  const std::vector<int>& free = discretization_.dofs->free_dofs();
+  const std::vector<int>& free = mesh_view_.dofs->free_dofs();
   if (static_cast<Eigen::Index>(free.size()) != A.rows())
     return fmt::format("DOF map has {} free DOFs, matrix {} rows", free.size(), A.rows());
   for (size_t i = 0; i < free.size(); ++i)

@@ -43,7 +43,7 @@ struct BoomerAmgOptions {
   int agg_p_max_elmts = 0;
   int num_paths = 1;
   /// >0: rigid-body rotations added to interpolation (InterpVecVariant; needs
-  /// nodal coarsening and the node coordinates, i.e. set_discretization()).
+  /// nodal coarsening and the node coordinates, i.e. set_mesh_view()).
   int interp_vec_variant = 0;
   int interp_vec_q_max = 4;
 };
@@ -118,6 +118,6 @@ class BoomerAmgPreconditioner final : public Preconditioner {
 /// passes one centre to every rank, so that the ranks' rows form global modes).
 /// Translations need no vectors: systems AMG interpolates each displacement
 /// component separately and keeps constants.
-Eigen::MatrixXd rigid_rotations(const Discretization& d, const Eigen::Vector3d* centre = nullptr);
+Eigen::MatrixXd rigid_rotations(const MeshView& d, const Eigen::Vector3d* centre = nullptr);
 
 }  // namespace hofem

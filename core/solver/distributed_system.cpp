@@ -242,7 +242,7 @@ std::unique_ptr<LinearSolver> make_problem_solver(const DistributedMesh* piece, 
   } else {
     solver = make_linear_solver(spec);
   }
-  solver->set_discretization({&mesh, &dofs, piece ? nullptr : blocks});
+  solver->set_mesh_view({&mesh, &dofs, piece ? nullptr : blocks});
   return solver;
 }
 

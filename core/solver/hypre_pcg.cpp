@@ -47,7 +47,7 @@ HyprePcgSolver::~HyprePcgSolver() = default;
 
 void HyprePcgSolver::analyze(const SparseMatrix&) { ++analyses_; }
 
-void HyprePcgSolver::set_discretization(const Discretization& d) { impl_->M.set_discretization(d); }
+void HyprePcgSolver::set_mesh_view(const MeshView& d) { impl_->M.set_mesh_view(d); }
 
 bool HyprePcgSolver::factorize(const SparseMatrix& A) {
   ++factorizations_;

@@ -30,7 +30,7 @@ class HyprePcgSolver final : public LinearSolver {
   /// non-finite entries, a non-positive diagonal or hypre fails.
   bool factorize(const SparseMatrix& A) override;
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
-  void set_discretization(const Discretization& d) override;
+  void set_mesh_view(const MeshView& d) override;
   void set_relative_tolerance(double rtol) override { rtol_ = rtol; }
   bool is_iterative() const override { return true; }
   int last_iterations() const override { return last_.iterations; }

@@ -62,7 +62,7 @@ class KrylovSolver final : public LinearSolver {
   void analyze(const SparseMatrix& A) override;
   bool factorize(const SparseMatrix& A) override;
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
-  void set_discretization(const Discretization& d) override { M_->set_discretization(d); }
+  void set_mesh_view(const MeshView& d) override { M_->set_mesh_view(d); }
   void set_relative_tolerance(double rtol) override { options_.rtol = rtol; }
   bool set_fixed_iterations(int k) override {
     fixed_iterations_ = k > 0 ? k : 0;

@@ -3,7 +3,7 @@
 // A solver analyses a sparsity pattern once (symbolic factorisation, orderings),
 // then factorises and solves many matrices with that pattern.
 #include "assembly/sparse_matrix.hpp"
-#include "solver/discretization.hpp"
+#include "solver/mesh_view.hpp"
 #include "solver/solver_spec.hpp"
 
 #include <Eigen/Core>
@@ -27,7 +27,7 @@ class LinearSolver {
   /// x = A^-1 b with the last factorised A.
   virtual void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) = 0;
   /// Mesh and DOF map of the systems to come, for mesh-aware preconditioners.
-  virtual void set_discretization(const Discretization&) {}
+  virtual void set_mesh_view(const MeshView&) {}
   /// Relative residual target of an iterative solver (Newton's inexact,
   /// Eisenstat-Walker tolerances); direct solvers ignore it.
   virtual void set_relative_tolerance(double) {}

@@ -35,30 +35,30 @@ bool PMultigridPreconditioner::setup(const SparseMatrix& A, const BlockSparseMat
 }
 
 bool PMultigridPreconditioner::check(const SparseMatrix& A) {
-  if (!discretization_.valid()) {
-    error_ = "pmg: needs the mesh and DOF map (set_discretization) before setup";
+  if (!mesh_view_.valid()) {
+    error_ = "pmg: needs the mesh and DOF map (set_mesh_view) before setup";
     return false;
   }
-  const Mesh& mesh = *discretization_.mesh;
+  const Mesh& mesh = *mesh_view_.mesh;
   if (mesh.order < 2) {
     error_ = fmt::format(
         "pmg needs element order >= 2 (the mesh is order {}, there is no coarser p level; use amg or ic0)", mesh.order);
     return false;
   }
-  if (A.rows() != discretization_.dofs->num_free() || A.cols() != A.rows() || !A.isCompressed()) {
+  if (A.rows() != mesh_view_.dofs->num_free() || A.cols() != A.rows() || !A.isCompressed()) {
     error_ = fmt::format("pmg: matrix is {}x{} (compressed: {}), the DOF map has {} free DOFs", A.rows(), A.cols(),
-                         A.isCompressed(), discretization_.dofs->num_free());
+                         A.isCompressed(), mesh_view_.dofs->num_free());
     return false;
   }
   return true;
 }
 
-// Hierarchy once per discretization, block structures and Galerkin patterns once
+// Hierarchy once per mesh view (mesh and DOF map), block structures and Galerkin patterns once
 // per fine pattern, values (and the smoothers' scaling and eigenvalue bounds) every
 // time.
 bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseMatrix<double>* blocks) {
-  const DofMap& dofs = *discretization_.dofs;
-  const Mesh& mesh = *discretization_.mesh;
+  const DofMap& dofs = *mesh_view_.dofs;
+  const Mesh& mesh = *mesh_view_.mesh;
   const std::array<std::int64_t, 4> shape{static_cast<std::int64_t>(mesh.cell), mesh.order, mesh.num_nodes(),
                                           mesh.num_elements()};
   if (dofs.identity() == 0 || dofs.identity() != dofs_identity_ || shape != mesh_shape_) {

@@ -25,7 +25,7 @@
 // assembled double matrix. Vectors and sums stay in double.
 //
 // Order 1 has no coarser p level: setup() then fails with "pmg needs element order
-// >= 2" (use amg there). Without set_discretization() setup() fails. apply() uses
+// >= 2" (use amg there). Without set_mesh_view() setup() fails. apply() uses
 // work vectors of its own (one instance must not be applied from two threads).
 #include "solver/block_galerkin.hpp"
 #include "solver/block_sparse_matrix.hpp"
@@ -113,7 +113,7 @@ class PMultigridPreconditioner final : public Preconditioner {
   void vcycle(std::size_t l, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
 
   PMultigridOptions options_;
-  // Built once per discretization and fine pattern. The discretization is known
+  // Built once per mesh view and fine pattern. The mesh view is known
   // by its DOF map's identity (DofMap::identity: new for every map built, where
   // an address is reused) and the shape of its mesh, which a DOF map is built for.
   std::uint64_t dofs_identity_ = 0;

@@ -126,7 +126,7 @@ class EigenIncompleteCholeskyPreconditioner final : public Preconditioner {
 
 }  // namespace
 
-bool preconditioner_needs_discretization(std::string_view name) { return name == "pmg" || name == "schwarz"; }
+bool preconditioner_needs_mesh_view(std::string_view name) { return name == "pmg" || name == "schwarz"; }
 
 std::unique_ptr<Preconditioner> make_preconditioner(std::string_view name) {
   if (name == "none") return std::make_unique<IdentityPreconditioner>();

@@ -4,7 +4,7 @@
 // symmetric positive definite when A is SPD, which CG, CR and MINRES need.
 #include "assembly/sparse_matrix.hpp"
 #include "solver/block_sparse_matrix.hpp"
-#include "solver/discretization.hpp"
+#include "solver/mesh_view.hpp"
 
 #include <Eigen/Core>
 
@@ -32,12 +32,12 @@ class Preconditioner {
   virtual void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const = 0;
   /// Mesh and DOF map of the systems to come (before setup). Mesh-aware
   /// preconditioners need it and fail setup() without it; others ignore it.
-  virtual void set_discretization(const Discretization& d) { discretization_ = d; }
+  virtual void set_mesh_view(const MeshView& d) { mesh_view_ = d; }
   const std::string& last_error() const { return error_; }
 
  protected:
   std::string error_;
-  Discretization discretization_;
+  MeshView mesh_view_;
 };
 
 /// "none", "jacobi", "block-jacobi" (3x3 nodal blocks), "ic0" (incomplete
@@ -49,7 +49,7 @@ class Preconditioner {
 /// solver/additive_schwarz.hpp). Throws std::invalid_argument naming the valid choices.
 std::unique_ptr<Preconditioner> make_preconditioner(std::string_view name);
 std::vector<std::string> preconditioner_names();
-/// True for preconditioners that need set_discretization() before setup().
-bool preconditioner_needs_discretization(std::string_view name);
+/// True for preconditioners that need set_mesh_view() before setup().
+bool preconditioner_needs_mesh_view(std::string_view name);
 
 }  // namespace hofem

@@ -7,7 +7,7 @@
 #include "assembly/sparse_matrix.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/mesh.hpp"
-#include "solver/discretization.hpp"
+#include "solver/mesh_view.hpp"
 #include "solver/preconditioner.hpp"
 
 #include <Eigen/Core>
@@ -26,9 +26,9 @@ struct ClampedElasticBody {
   explicit ClampedElasticBody(Mesh m);
   /// The unit cube with n cells per side.
   ClampedElasticBody(CellType cell, int order, int n);
-  ClampedElasticBody(const ClampedElasticBody&) = delete;  // discretization() points into it
+  ClampedElasticBody(const ClampedElasticBody&) = delete;  // mesh_view() points into it
   ClampedElasticBody& operator=(const ClampedElasticBody&) = delete;
-  Discretization discretization() const { return {&mesh, &dofs}; }
+  MeshView mesh_view() const { return {&mesh, &dofs}; }
   Eigen::Index unknowns() const { return K.rows(); }
 };
 

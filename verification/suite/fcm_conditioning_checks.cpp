@@ -135,7 +135,7 @@ Spectrum schwarz_spectrum(const SparseMatrix& A, const Mesh& mesh, const DofMap&
   options.elements = blocks;
   options.epsilon = kSchwarzEpsilon;
   AdditiveSchwarzPreconditioner P(options);
-  P.set_discretization(Discretization{&mesh, &dofs});
+  P.set_mesh_view(MeshView{&mesh, &dofs});
   if (!P.setup(A)) {
     s.error = "Additive-Schwarz setup failed: " + P.last_error();
     return s;

@@ -89,7 +89,7 @@ void add_spd_rows(Report& report) {
 
       try {
         solver = make_linear_solver(name);
-        solver->set_discretization(s.body.discretization());
+        solver->set_mesh_view(s.body.mesh_view());
         solver->set_relative_tolerance(rtol);
         iterative = solver->is_iterative();
         solver->analyze(s.body.K);
@@ -127,7 +127,7 @@ void add_preconditioner_rows(Report& report) {
       std::string error;
       try {
         M = make_preconditioner(name);
-        M->set_discretization(s.body.discretization());
+        M->set_mesh_view(s.body.mesh_view());
         if (!M->setup(s.body.K)) error = M->last_error();
       } catch (const std::exception& e) {
         error = e.what();
@@ -188,7 +188,7 @@ void add_indefinite_rows(Report& report) {
     std::string error;
     try {
       M = make_preconditioner(pc);
-      M->set_discretization({&mesh, &dofs});
+      M->set_mesh_view({&mesh, &dofs});
       if (!M->setup(K)) error = M->last_error();
     } catch (const std::exception& e) {
       error = e.what();

@@ -38,7 +38,7 @@ struct OneTet {
     mesh.elements << 0, 1, 2, 3;
     dofs = DofMap(4, {});
   }
-  Discretization discretization() const { return {&mesh, &dofs}; }
+  MeshView mesh_view() const { return {&mesh, &dofs}; }
 };
 
 // C = Q diag(lambda) Q^T with a random orthogonal Q (fixed seed via Eigen's rand).
@@ -62,7 +62,7 @@ TEST(AdditiveSchwarz, SingleBlockIsTheInverseOfAnSpdMatrix) {
     AdditiveSchwarzOptions options;
     options.cholesky_fast_path = cholesky;
     AdditiveSchwarzPreconditioner S(options);
-    S.set_discretization(tet.discretization());
+    S.set_mesh_view(tet.mesh_view());
     ASSERT_TRUE(S.setup(sparse(C))) << S.last_error();
     EXPECT_EQ(S.num_blocks(), 1);
     EXPECT_EQ(S.num_uncovered(), 0);
@@ -85,7 +85,7 @@ TEST(AdditiveSchwarz, ReflectsAndTruncatesEigenvaluesAsEq14) {
   Eigen::MatrixXd Q;
   const Eigen::MatrixXd C = with_spectrum(lambda, Q);
   AdditiveSchwarzPreconditioner S({{}, eps});
-  S.set_discretization(tet.discretization());
+  S.set_mesh_view(tet.mesh_view());
   ASSERT_TRUE(S.setup(sparse(C))) << S.last_error();
   EXPECT_EQ(S.num_truncated(), 2);
   EXPECT_EQ(S.num_reflected(), 3);  // -5, -2, -0.1 (-3e-11 is truncated instead)
@@ -116,7 +116,7 @@ TEST(AdditiveSchwarz, NearlySingularBlockGetsEpsOverLambdaMax) {
   Eigen::MatrixXd Q;
   const Eigen::MatrixXd C = with_spectrum(lambda, Q);
   AdditiveSchwarzPreconditioner S;
-  S.set_discretization(tet.discretization());
+  S.set_mesh_view(tet.mesh_view());
   ASSERT_TRUE(S.setup(sparse(C))) << S.last_error();
   EXPECT_EQ(S.num_truncated(), 1);
   const Eigen::MatrixXd Minv = dense_inverse(S, 12);
@@ -132,7 +132,7 @@ TEST(AdditiveSchwarz, IsSymmetricPositiveDefiniteOnStiffnessMatrices) {
   const System systems[] = {{CellType::Tetrahedron, 1, 2}, {CellType::Tetrahedron, 2, 2}, {CellType::Hexahedron, 1, 3}};
   for (const System& s : systems) {
     AdditiveSchwarzPreconditioner M;
-    M.set_discretization(s.discretization());
+    M.set_mesh_view(s.mesh_view());
     ASSERT_TRUE(M.setup(s.K)) << M.last_error();
     EXPECT_EQ(M.num_blocks(), s.mesh.num_elements());
     // Eq. 13: C_K is the submatrix of the global K on the element's DOFs (not the
@@ -169,7 +169,7 @@ TEST(AdditiveSchwarz, CgAndMinresConvergeToTheCholmodSolution) {
     opt.rtol = 1e-10;
     for (const SolverMethod method : {SolverMethod::Cg, SolverMethod::Minres}) {
       KrylovSolver k(method, "schwarz", opt);
-      k.set_discretization(s.discretization());
+      k.set_mesh_view(s.mesh_view());
       ASSERT_TRUE(k.factorize(s.K)) << k.name();
       k.solve(b, x);
       EXPECT_TRUE(k.last_result().converged) << k.name();
@@ -197,7 +197,7 @@ TEST(AdditiveSchwarz, MinresConvergesOnAnIndefiniteHessian) {
   const Eigen::MatrixXd D(s.K);
   ASSERT_LT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(D, Eigen::EigenvaluesOnly).eigenvalues()[0], 0.0);
   AdditiveSchwarzPreconditioner M;
-  M.set_discretization(s.discretization());
+  M.set_mesh_view(s.mesh_view());
   ASSERT_TRUE(M.setup(s.K)) << M.last_error();
   EXPECT_GT(M.num_reflected(), 0);
   const Eigen::MatrixXd Minv = dense_inverse(M, s.K.rows());
@@ -220,7 +220,7 @@ TEST(AdditiveSchwarz, SubsetOfElementsLeavesOtherDofsJacobiPreconditioned) {
   AdditiveSchwarzOptions options;
   for (int e = 0; e < s.mesh.num_elements(); e += 5) options.elements.push_back(e);
   AdditiveSchwarzPreconditioner M(options);
-  M.set_discretization(s.discretization());
+  M.set_mesh_view(s.mesh_view());
   ASSERT_TRUE(M.setup(s.K)) << M.last_error();
   EXPECT_EQ(M.num_blocks(), static_cast<int>(options.elements.size()));
   ASSERT_GT(M.num_uncovered(), 0);
@@ -255,7 +255,7 @@ TEST(AdditiveSchwarz, BitwiseReproducibleAcrossThreadCounts) {
   for (int threads : {1, 2}) {
     omp_set_num_threads(threads);
     AdditiveSchwarzPreconditioner M;
-    M.set_discretization(s.discretization());
+    M.set_mesh_view(s.mesh_view());
     ASSERT_TRUE(M.setup(s.K)) << M.last_error();
     M.apply(r, z[threads - 1]);
   }
@@ -270,7 +270,7 @@ TEST(AdditiveSchwarz, BitwiseReproducibleAcrossThreadCounts) {
 TEST(AdditiveSchwarz, FollowsAChangeOfSparsityPattern) {
   const System s(CellType::Hexahedron, 1, 2);
   AdditiveSchwarzPreconditioner M;
-  M.set_discretization(s.discretization());
+  M.set_mesh_view(s.mesh_view());
   const Eigen::VectorXd r = rhs(s.K.rows());
   Eigen::VectorXd z0, z1, z2;
   ASSERT_TRUE(M.setup(s.K)) << M.last_error();
@@ -293,15 +293,15 @@ TEST(AdditiveSchwarz, SetupFailsWithAReason) {
   auto M = make_preconditioner("schwarz");
   EXPECT_EQ(M->name(), "schwarz");
   EXPECT_FALSE(M->setup(s.K));
-  EXPECT_NE(M->last_error().find("set_discretization"), std::string::npos) << M->last_error();
-  M->set_discretization(s.discretization());
+  EXPECT_NE(M->last_error().find("set_mesh_view"), std::string::npos) << M->last_error();
+  M->set_mesh_view(s.mesh_view());
   SparseMatrix bad = s.K;
   bad.valuePtr()[bad.nonZeros() / 2] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_FALSE(M->setup(bad));
   EXPECT_NE(M->last_error().find("nan"), std::string::npos) << M->last_error();
   EXPECT_TRUE(M->setup(s.K)) << M->last_error();  // recovers on a good matrix
   AdditiveSchwarzPreconditioner out_of_range({{0, s.mesh.num_elements()}, 1e-13});
-  out_of_range.set_discretization(s.discretization());
+  out_of_range.set_mesh_view(s.mesh_view());
   EXPECT_FALSE(out_of_range.setup(s.K));
   EXPECT_NE(out_of_range.last_error().find("out of range"), std::string::npos) << out_of_range.last_error();
 }

@@ -394,7 +394,7 @@ namespace hofem {
 namespace {
 
 // Longva et al. 2020 §5.2: blocks only for cut cells under a volume fraction of 0.5,
-// Jacobi elsewhere, passed through the discretization, and CG / MINRES with it
+// Jacobi elsewhere, passed through the mesh view, and CG / MINRES with it
 // solve the stabilised finite-cell problem to the direct solver's answer
 // (1e-6 relative: the Krylov stopping rule is 1e-10 on the residual, times the
 // condition number of the stabilised system).
@@ -414,8 +414,8 @@ TEST(FiniteCell, AdditiveSchwarzBlocksCutCellsAndSolvesTheSystem) {
   const DofMap dofs(background.num_nodes(), unsupported_nodes(background, fc.element_rules()));
   AdditiveSchwarzPreconditioner some, none;
   const std::vector<int> empty;
-  some.set_discretization({&background, &dofs, &blocks});
-  none.set_discretization({&background, &dofs, &empty});
+  some.set_mesh_view({&background, &dofs, &blocks});
+  none.set_mesh_view({&background, &dofs, &empty});
   Assembler a(background, dofs);
   a.set_element_rules(fc.element_rules());
   SparseMatrix K = a.new_matrix();

@@ -85,7 +85,7 @@ TEST(BoomerAmg, EveryVariantWithOurCgAgreesWithCholmod) {
       KrylovOptions opt;
       opt.rtol = kRtol;
       KrylovSolver cg(SolverMethod::Cg, variant, opt);
-      cg.set_discretization(s.discretization());
+      cg.set_mesh_view(s.mesh_view());
       ASSERT_TRUE(cg.factorize(s.K)) << c.label << " " << variant;
       Eigen::VectorXd x;
       cg.solve(s.b, x);
@@ -107,7 +107,7 @@ TEST(BoomerAmg, PreconditionersAreSymmetricPositiveDefinite) {
     for (const std::string& variant : boomeramg_variant_names()) {
       const auto M = make_preconditioner(variant);
       EXPECT_EQ(M->name(), variant);
-      M->set_discretization(s.discretization());
+      M->set_mesh_view(s.mesh_view());
       ASSERT_TRUE(M->setup(s.K)) << variant << ": " << M->last_error();
       const Eigen::MatrixXd Minv = verification::dense_inverse(*M, n);
       EXPECT_LE((Minv - Minv.transpose()).cwiseAbs().maxCoeff(), 1e-12 * Minv.cwiseAbs().maxCoeff())
@@ -151,7 +151,7 @@ TEST(HyprePcg, AgreesWithCholmodAndStopsOnOurRelativeResidual) {
       auto pcg = make_linear_solver("hypre-pcg+amg");
       EXPECT_EQ(pcg->name(), "hypre-pcg+amg");
       EXPECT_TRUE(pcg->is_iterative());
-      pcg->set_discretization(s.discretization());
+      pcg->set_mesh_view(s.mesh_view());
       pcg->set_relative_tolerance(rtol);
       ASSERT_TRUE(pcg->factorize(s.K));
       Eigen::VectorXd x;
@@ -195,10 +195,10 @@ TEST(BoomerAmg, RefusesBadMatricesWithAReason) {
     const SparseMatrix odd = s.K.topLeftCorner(s.K.rows() - 1, s.K.cols() - 1);
     EXPECT_FALSE(M->setup(odd));
     EXPECT_NE(M->last_error().find("not 3 per node"), std::string::npos) << M->last_error();
-    M->set_discretization(elasticity(CellType::Tetrahedron, 1, 6).discretization());  // another system
+    M->set_mesh_view(elasticity(CellType::Tetrahedron, 1, 6).mesh_view());  // another system
     EXPECT_FALSE(M->setup(s.K));
     EXPECT_NE(M->last_error().find("DOF map"), std::string::npos) << M->last_error();
-    M->set_discretization(s.discretization());  // and it recovers
+    M->set_mesh_view(s.mesh_view());  // and it recovers
     EXPECT_TRUE(M->setup(s.K)) << M->last_error();
   }
   HyprePcgSolver pcg;
@@ -262,8 +262,8 @@ TEST(BoomerAmg, RigidBodyModesNeedTheMeshAndThenConverge) {
   o.interp_vec_variant = 2;
   BoomerAmgPreconditioner M("amg-rbm", o);
   EXPECT_FALSE(M.setup(s.K));
-  EXPECT_NE(M.last_error().find("set_discretization"), std::string::npos) << M.last_error();
-  M.set_discretization(s.discretization());
+  EXPECT_NE(M.last_error().find("set_mesh_view"), std::string::npos) << M.last_error();
+  M.set_mesh_view(s.mesh_view());
   ASSERT_TRUE(M.setup(s.K)) << M.last_error();
   Eigen::VectorXd x = Eigen::VectorXd::Zero(s.b.size());
   const KrylovResult r = conjugate_gradient(s.K, s.b, x, M, KrylovOptions{});

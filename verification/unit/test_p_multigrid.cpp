@@ -39,8 +39,8 @@ struct CubeSystem {
     K = a.new_matrix();
     a.hessian(*mat, Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), 3 * mesh.num_nodes()), g, K, false);
   }
-  CubeSystem(const CubeSystem&) = delete;  // the Discretization points into it
-  Discretization discretization() const { return {&mesh, &dofs}; }
+  CubeSystem(const CubeSystem&) = delete;  // the MeshView points into it
+  MeshView mesh_view() const { return {&mesh, &dofs}; }
 };
 
 struct Element {
@@ -161,7 +161,7 @@ TEST(PMultigrid, VCycleIsSymmetricPositiveDefinite) {
       PMultigridOptions opt;
       opt.coarsening = coarsening;
       PMultigridPreconditioner M(opt);
-      M.set_discretization(s.discretization());
+      M.set_mesh_view(s.mesh_view());
       ASSERT_TRUE(M.setup(s.K)) << el.name << ": " << M.last_error();
       EXPECT_EQ(M.num_levels(), coarsening == PMultigridOptions::Coarsening::ByOne && el.cell == CellType::Tetrahedron
                                     ? el.order
@@ -190,7 +190,7 @@ CgRun solve(const CubeSystem& s, const std::string& name, const Eigen::VectorXd&
   KrylovOptions opt;
   opt.rtol = 1e-10;
   KrylovSolver cg(SolverMethod::Cg, name, opt);
-  cg.set_discretization(s.discretization());
+  cg.set_mesh_view(s.mesh_view());
   EXPECT_TRUE(cg.factorize(s.K)) << name << ": " << cg.preconditioner().last_error();
   CgRun run{0, {}};
   cg.solve(b, run.x);
@@ -238,7 +238,7 @@ TEST(PMultigrid, AmgCoarseLevelConverges) {
     PMultigridOptions opt;
     opt.direct_coarse_limit = 0;
     PMultigridPreconditioner M(opt);
-    M.set_discretization(s.discretization());
+    M.set_mesh_view(s.mesh_view());
     ASSERT_TRUE(M.setup(s.K)) << el.name << ": " << M.last_error();
     EXPECT_FALSE(M.direct_coarse());
     KrylovOptions kopt;
@@ -276,7 +276,7 @@ TEST(PMultigrid, IterationsNearlyFlatUnderRefinement) {
 TEST(PMultigrid, CoarseAnalysisIsReusedAcrossSetups) {
   const CubeSystem s(2, CellType::Tetrahedron, 2);
   PMultigridPreconditioner M;
-  M.set_discretization(s.discretization());
+  M.set_mesh_view(s.mesh_view());
   ASSERT_TRUE(M.setup(s.K));
   Eigen::VectorXd z1, z2;
   const Eigen::VectorXd r = rhs(s.K.rows());
@@ -301,7 +301,7 @@ TEST(PMultigrid, RebuildsForADofMapRebuiltAtTheSameAddress) {
   const auto solver = make_linear_solver("cg+pmg");
   solver->set_relative_tolerance(1e-10);
   const auto solve_and_check = [&](const SparseMatrix& K) {
-    solver->set_discretization(s.discretization());
+    solver->set_mesh_view(s.mesh_view());
     ASSERT_TRUE(solver->factorize(K)) << solver->last_error();
     const Eigen::VectorXd b = rhs(K.rows());
     Eigen::VectorXd x;
@@ -337,17 +337,17 @@ TEST(PMultigrid, DrivesNewtonOnANonlinearMaterial) {
   }
 }
 
-TEST(PMultigrid, RefusesWithoutDiscretizationAndOnOrderOne) {
+TEST(PMultigrid, RefusesWithoutMeshViewAndOnOrderOne) {
   const CubeSystem p2(2, CellType::Tetrahedron, 2);
   auto M = make_preconditioner("pmg");
   EXPECT_FALSE(M->setup(p2.K));
-  EXPECT_NE(M->last_error().find("set_discretization"), std::string::npos) << M->last_error();
-  EXPECT_TRUE(preconditioner_needs_discretization("pmg"));
+  EXPECT_NE(M->last_error().find("set_mesh_view"), std::string::npos) << M->last_error();
+  EXPECT_TRUE(preconditioner_needs_mesh_view("pmg"));
   // Order 1 has no coarser p level: a clear failure, for tets and Hex8 alike.
   for (CellType cell : {CellType::Tetrahedron, CellType::Hexahedron}) {
     const CubeSystem p1(2, cell, 1);
     auto M1 = make_preconditioner("pmg");
-    M1->set_discretization(p1.discretization());
+    M1->set_mesh_view(p1.mesh_view());
     EXPECT_FALSE(M1->setup(p1.K));
     EXPECT_NE(M1->last_error().find("pmg needs element order >= 2"), std::string::npos) << M1->last_error();
   }
@@ -366,7 +366,7 @@ TEST(PMultigrid, RefusesWithoutDiscretizationAndOnOrderOne) {
   // A matrix that does not belong to the DOF map.
   auto M2 = make_preconditioner("pmg");
   const CubeSystem other(3, CellType::Tetrahedron, 2);
-  M2->set_discretization(p2.discretization());
+  M2->set_mesh_view(p2.mesh_view());
   EXPECT_FALSE(M2->setup(other.K));
   EXPECT_NE(M2->last_error().find("free DOFs"), std::string::npos) << M2->last_error();
 }
