@@ -78,39 +78,18 @@ DynamicElasticity::DynamicElasticity(const Mesh& mesh, const Material& material,
     options_.floor->normal.normalize();
   }
   const bool explicit_scheme = is_explicit(o.integrator);
-  mass_kind_ = o.mass.value_or(explicit_scheme ? MassKind::Lumped : MassKind::Consistent);
-  lumping_ = o.lumping.value_or(mesh.order == 1 ? MassLumping::RowSum : MassLumping::HRZ);
   // Consistent mass: N_i N_j has degree 2p on affine cells (2p per direction on hexes).
-  mass_degree_ = 2 * mesh.order;
-  if (mass_kind_ == MassKind::Lumped) {
-    lumped_ = disc_->assembler().lumped_mass(o.density, mass_degree_, lumping_);
-    stats_.mass = lumping_ == MassLumping::RowSum ? "lumped (row-sum)" : "lumped (HRZ)";
-    // Over the free DOFs: unsupported finite-cell nodes (constrained) have none.
-    Eigen::VectorXd whole = lumped_;  // distributed: this rank's elements' share, completed here
-    disc_->complete_nodal(whole);
-    const Eigen::VectorXd nodal = dofs_.restrict(whole);
-    double min_mass = nodal.size() > 0 ? nodal.minCoeff() : 1.0;
-    min_mass = disc_->min(min_mass);
-    if (min_mass <= 0.0)
-      throw std::invalid_argument(fmt::format(
-          "dynamics: {} lumping gives a non-positive nodal mass ({:.3e}) for order {}; use HRZ lumping or the "
-          "consistent mass",
-          lumping_ == MassLumping::RowSum ? "row-sum" : "HRZ", min_mass, mesh.order));
-  } else {
-    stats_.mass = "consistent";
-    ensure_consistent_mass();
-    if (explicit_scheme) {
-      mass_solver_ = make_linear_solver("cholmod");
-      if (!mass_solver_->factorize(M_)) throw std::runtime_error("dynamics: the consistent mass is not positive definite");
-      ++stats_.mass_factorizations;
-    }
-  }
+  mass_ = std::make_unique<MassModel>(
+      *disc_, o.density, o.mass.value_or(explicit_scheme ? MassKind::Lumped : MassKind::Consistent),
+      o.lumping.value_or(mesh.order == 1 ? MassLumping::RowSum : MassLumping::HRZ), 2 * mesh.order,
+      o.quadrature_degree, explicit_scheme);
+  stats_.mass = mass_->name();
   // Distributed: this rank's elements' share (a partial sum, as every force
   // vector here before complete_free()).
   f_gravity_ = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
   if (o.gravity.squaredNorm() > 0.0) {
     const Eigen::Vector3d rho_g = o.density * o.gravity;
-    f_gravity_ = disc_->assembler().body_force_vector([&](const Eigen::Vector3d&) { return rho_g; }, mass_degree_);
+    f_gravity_ = disc_->assembler().body_force_vector([&](const Eigen::Vector3d&) { return rho_g; }, mass_->degree());
   }
   const double extent = (mesh.nodes.rowwise().maxCoeff() - mesh.nodes.rowwise().minCoeff()).norm();  // the whole body
   elastic_force_scale_ = (2.0 * material.lame().mu + material.lame().lambda) * extent * extent;
@@ -126,6 +105,8 @@ const DynamicsStats& DynamicElasticity::stats() const {
   // Every energy, gradient or Hessian assembly evaluates the material once per
   // quadrature point of every element.
   const long long evaluations = stats_.energy_evaluations + stats_.gradient_evaluations + stats_.hessian_assemblies;
+  stats_.mass_matrices_built = mass_->matrices_built();
+  stats_.mass_factorizations = mass_->factorizations();
   stats_.polar_decompositions =
       polar_decompositions(material_, evaluations, disc_->global_elements(),
                            static_cast<long long>(disc_->assembler().rule().size()));
@@ -135,12 +116,6 @@ const DynamicsStats& DynamicElasticity::stats() const {
 RankStats DynamicElasticity::rank_stats() const {
   if (!solver_) throw std::logic_error("DynamicElasticity::rank_stats: not a distributed run that has stepped");
   return disc_->rank_stats(*solver_);
-}
-
-void DynamicElasticity::ensure_consistent_mass() {
-  if (M_.size() > 0) return;
-  M_ = disc_->assembler().mass_matrix(options_.density, mass_degree_);
-  ++stats_.mass_matrices_built;
 }
 
 void DynamicElasticity::ensure_linear_solver() {
@@ -189,35 +164,16 @@ Eigen::VectorXd DynamicElasticity::displacement() const {
   return x_ - Eigen::Map<const Eigen::VectorXd>(mesh_.nodes.data(), 3 * mesh_.num_nodes());
 }
 
-Eigen::VectorXd DynamicElasticity::mass_times(const Eigen::VectorXd& r) const {
-  if (mass_kind_ == MassKind::Lumped) return lumped_.cwiseProduct(r);
-  return consistent_mass_times(r);
-}
-
 double DynamicElasticity::elastic_energy(const Eigen::VectorXd& x) const {
   return disc_->sum(disc_->assembler().energy(material_, x));
 }
 
-// The consistent mass over ALL DOFs (prescribed ones too: kinetic energy and the
-// coupling to prescribed accelerations), assembled once on first use: integrating
-// it again per product cost half of an embedded scene's run, whose cut cells carry
-// mass rules of 1e5-1e6 points.
-Eigen::VectorXd DynamicElasticity::consistent_mass_times(const Eigen::VectorXd& r) const {
-  if (M_all_.size() == 0) {
-    const DofMap all(mesh_.num_nodes(), {});
-    Assembler a(mesh_, all, options_.quadrature_degree);
-    a.set_element_rules(disc_->rules());
-    M_all_ = a.mass_matrix(options_.density, mass_degree_);
-    ++stats_.mass_matrices_built;
-  }
-  return M_all_ * r;
-}
 
 Energies DynamicElasticity::energies() {
   Energies e;
   // Distributed: the mass products are this rank's elements' share and the
   // floor counts its owned nodes, so each term's sum over ranks is the body's.
-  e.kinetic = 0.5 * v_.dot(mass_times(v_));
+  e.kinetic = 0.5 * v_.dot(mass_->times(v_));
   const auto t0 = Clock::now();
   if (!rest_energy_) {
     rest_energy_ = elastic_energy(Eigen::Map<const Eigen::VectorXd>(mesh_.nodes.data(), x_.size()));
@@ -235,7 +191,7 @@ Energies DynamicElasticity::energies() {
 }
 
 Eigen::Vector3d DynamicElasticity::linear_momentum() const {
-  const Eigen::VectorXd p = mass_times(v_);
+  const Eigen::VectorXd p = mass_->times(v_);
   Eigen::Vector3d P = Eigen::Vector3d::Zero();
   for (int i = 0; i < mesh_.num_nodes(); ++i) P += p.segment<3>(3 * i);
   disc_->sum(P);  // shares of M v
@@ -243,7 +199,7 @@ Eigen::Vector3d DynamicElasticity::linear_momentum() const {
 }
 
 Eigen::Vector3d DynamicElasticity::angular_momentum() const {
-  const Eigen::VectorXd p = mass_times(v_);
+  const Eigen::VectorXd p = mass_->times(v_);
   Eigen::Vector3d L = Eigen::Vector3d::Zero();
   for (int i = 0; i < mesh_.num_nodes(); ++i) L += x_.segment<3>(3 * i).cross(p.segment<3>(3 * i));
   disc_->sum(L);
@@ -251,7 +207,7 @@ Eigen::Vector3d DynamicElasticity::angular_momentum() const {
 }
 
 double DynamicElasticity::kinetic_energy() const {
-  return disc_->sum(0.5 * v_.dot(mass_times(v_)));
+  return disc_->sum(0.5 * v_.dot(mass_->times(v_)));
 }
 
 double DynamicElasticity::estimate_stable_dt(int iterations) {
@@ -266,12 +222,12 @@ double DynamicElasticity::estimate_stable_dt(int iterations) {
     Eigen::VectorXd Kw = stiffness_times(x_, w);
     for (int i : dofs_.constrained_dofs()) Kw[i] = 0.0;
     Eigen::VectorXd z;
-    if (mass_kind_ == MassKind::Lumped) {
+    if (mass_->lumped()) {
       z = Eigen::VectorXd::Zero(x_.size());  // unsupported finite-cell nodes have no mass
-      for (int i : dofs_.free_dofs()) z[i] = Kw[i] / lumped_[i];
+      for (int i : dofs_.free_dofs()) z[i] = Kw[i] / mass_->diagonal()[i];
     } else {  // explicit integrators with the consistent mass have its factor
       Eigen::VectorXd zf;
-      mass_solver_->solve(dofs_.restrict(Kw), zf);
+      mass_->solve_free(dofs_.restrict(Kw), zf);
       z = Eigen::VectorXd::Zero(x_.size());
       dofs_.add_free(zf, z);
     }
@@ -282,7 +238,7 @@ double DynamicElasticity::estimate_stable_dt(int iterations) {
   // lambda_max grows by at most k / (smallest nodal mass) for a lumped mass (for
   // the consistent one, with its smallest diagonal entry, an estimate only).
   if (options_.floor) {
-    const double m_min = mass_kind_ == MassKind::Lumped ? lumped_.minCoeff() : M_.diagonal().minCoeff();
+    const double m_min = mass_->min_diagonal();
     lambda += options_.floor->stiffness / m_min;
   }
   const double omega = std::sqrt(std::max(lambda, 0.0));
@@ -334,14 +290,7 @@ void DynamicElasticity::release_due_motions() {
   disc_->constrain(constrained_nodes(motions_, mesh_.num_nodes()));  // a new DOF map and pattern
   moving_boundary_ = false;
   for (const PrescribedMotion& m : motions_) moving_boundary_ = moving_boundary_ || (m.moves() && !m.nodes.empty());
-  if (mass_kind_ == MassKind::Consistent) {
-    M_ = SparseMatrix();
-    ensure_consistent_mass();
-    if (mass_solver_) {
-      if (!mass_solver_->factorize(M_)) throw std::runtime_error("dynamics: the consistent mass is not positive definite");
-      ++stats_.mass_factorizations;
-    }
-  }
+  mass_->rebuild();
   if (solver_) {
     solver_.reset();  // a new pattern and DOF map: mesh-aware preconditioners start over (and global rows)
     ensure_linear_solver();
@@ -370,7 +319,7 @@ StepReport DynamicElasticity::step() {
     double boundary = 0.0;
     Eigen::VectorXd vb = Eigen::VectorXd::Zero(x_.size());
     for (int i : dofs_.constrained_dofs()) vb[i] = v_[i];
-    boundary = 0.5 * vb.dot(mass_times(vb));
+    boundary = 0.5 * vb.dot(mass_->times(vb));
     energy_reference_ = std::max({kinetic_energy() + elastic, gravity_work, boundary,
                                   std::numeric_limits<double>::min()});
   }

@@ -16,6 +16,7 @@
 #include "assembly/dof_map.hpp"
 #include "dynamics/floor_contact.hpp"
 #include "dynamics/integrator.hpp"
+#include "dynamics/mass_model.hpp"
 #include "dynamics/prescribed_motion.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
@@ -35,8 +36,6 @@
 #include <vector>
 
 namespace hofem {
-
-enum class MassKind { Consistent, Lumped };
 
 /// The shared options (ProblemOptions: quadrature, element rules, solver with
 /// its Krylov budget, Newton, distribution) and time stepping's own.
@@ -158,8 +157,6 @@ class DynamicElasticity {
   Eigen::VectorXd internal_forces(const Eigen::VectorXd& x);
   Eigen::VectorXd forces(const Eigen::VectorXd& x, const Eigen::VectorXd& v);
   Eigen::VectorXd accelerations(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
-  Eigen::VectorXd mass_times(const Eigen::VectorXd& r) const;
-  Eigen::VectorXd consistent_mass_times(const Eigen::VectorXd& r) const;
   /// Elastic energy of the whole body (summed over ranks when distributed).
   double elastic_energy(const Eigen::VectorXd& x) const;
   Eigen::VectorXd stiffness_times(const Eigen::VectorXd& x, const Eigen::VectorXd& w);
@@ -175,7 +172,6 @@ class DynamicElasticity {
   void implicit_euler_adaptive(StepReport& report, double h, int depth);
   void ensure_linear_solver();
   void release_due_motions();
-  void ensure_consistent_mass();
 
   /// The mesh (or this rank's piece), element rules, DOF map, assembler, global
   /// numbering and reductions over ranks; first, as everything below refers to it.
@@ -185,14 +181,8 @@ class DynamicElasticity {
   const Material& material_;
   std::vector<PrescribedMotion> motions_;
   DynamicsOptions options_;
-  MassKind mass_kind_;
-  MassLumping lumping_;
-  int mass_degree_;
   std::vector<char> released_;    ///< per motion: released (every rank alike, whether or not it has its nodes)
-  Eigen::VectorXd lumped_;        ///< lumped mass per DOF (lumped runs)
-  SparseMatrix M_;                ///< consistent mass over the free DOFs (when needed)
-  mutable SparseMatrix M_all_;    ///< consistent mass over all DOFs (built on first product)
-  std::unique_ptr<LinearSolver> mass_solver_;  ///< explicit + consistent mass
+  std::unique_ptr<MassModel> mass_;
   std::unique_ptr<LinearSolver> solver_;       ///< implicit integrators
   SparseMatrix K_;
   Eigen::VectorXd f_gravity_;     ///< consistent gravity load, all DOFs

@@ -38,7 +38,7 @@ Eigen::VectorXd DynamicElasticity::forces(const Eigen::VectorXd& x, const Eigen:
     ++stats_.floor_evaluations;
     options_.floor->add_forces(x, f);
   }
-  if (options_.rayleigh_alpha > 0.0) f -= options_.rayleigh_alpha * mass_times(v);
+  if (options_.rayleigh_alpha > 0.0) f -= options_.rayleigh_alpha * mass_->times(v);
   if (options_.rayleigh_beta > 0.0) f -= options_.rayleigh_beta * stiffness_times(x, v);
   return f;
 }
@@ -51,13 +51,13 @@ Eigen::VectorXd DynamicElasticity::accelerations(double t, const Eigen::VectorXd
     if (m.acceleration)
       for (int n : m.nodes) a_p.segment<3>(3 * n) = m.acceleration(mesh_.nodes.col(n), t);
   Eigen::VectorXd a = a_p;
-  if (mass_kind_ == MassKind::Lumped) {
-    for (int i : dofs_.free_dofs()) a[i] = f[i] / lumped_[i];
+  if (mass_->lumped()) {
+    for (int i : dofs_.free_dofs()) a[i] = f[i] / mass_->diagonal()[i];
   } else {
-    if (moving_boundary_) f -= consistent_mass_times(a_p);
+    if (moving_boundary_) f -= mass_->consistent_times(a_p);
     const auto t0 = std::chrono::steady_clock::now();
     Eigen::VectorXd af;
-    mass_solver_->solve(dofs_.restrict(f), af);
+    mass_->solve_free(dofs_.restrict(f), af);
     stats_.solve_seconds += since(t0);
     dofs_.add_free(af, a);
   }

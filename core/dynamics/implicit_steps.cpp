@@ -85,10 +85,10 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
     // Distributed: K is this rank's share (its elements' mass and stiffness, its
     // owned nodes' floor blocks); hypre sums the shares.
     if (s_.options_.floor) s_.options_.floor->add_hessian(x_, s_.dofs_, K, s_.disc_->counted_nodes());
-    if (s_.mass_kind_ == MassKind::Consistent) {
-      add_scaled(K, inertia_, s_.M_);
+    if (!s_.mass_->lumped()) {
+      add_scaled(K, inertia_, s_.mass_->free_matrix());
     } else {
-      const Eigen::VectorXd m = s_.dofs_.restrict(s_.lumped_);
+      const Eigen::VectorXd m = s_.dofs_.restrict(s_.mass_->diagonal());
       for (Eigen::Index i = 0; i < m.size(); ++i) K.coeffRef(i, i) += inertia_ * m[i];
     }
     if (K_n_) add_scaled(K, s_.options_.rayleigh_beta / s_.options_.dt, *K_n_);
@@ -115,8 +115,8 @@ class DynamicElasticity::IncrementalPotential final : public NonlinearProblem {
     for (int k = 0; k < z.size(); ++k) x_[s_.dofs_.free_dofs()[k]] = y_n_[k] + z[k];
   }
   Eigen::VectorXd mass_free(const Eigen::VectorXd& w) const {
-    if (s_.mass_kind_ == MassKind::Consistent) return s_.M_ * w;
-    return s_.dofs_.restrict(s_.lumped_).cwiseProduct(w);
+    if (!s_.mass_->lumped()) return s_.mass_->free_matrix() * w;
+    return s_.dofs_.restrict(s_.mass_->diagonal()).cwiseProduct(w);
   }
   double quadratic(const Eigen::VectorXd& y) const {
     const double h = s_.options_.dt;
@@ -165,10 +165,10 @@ void DynamicElasticity::step_implicit_euler(StepReport& report) {
   Eigen::VectorXd x_new = x_, v_new = v_;
   impose_motion(t_ + h, x_new, &v_new);
   Eigen::VectorXd coupling = Eigen::VectorXd::Zero(y_n.size());
-  if (moving_boundary_ && mass_kind_ == MassKind::Consistent) {
+  if (moving_boundary_ && !mass_->lumped()) {
     Eigen::VectorXd r_p = Eigen::VectorXd::Zero(x_.size());
     for (int i : dofs_.constrained_dofs()) r_p[i] = x_new[i] - (x_[i] + h * v_[i]);
-    coupling = dofs_.restrict(consistent_mass_times(r_p));
+    coupling = dofs_.restrict(mass_->consistent_times(r_p));
   }
   SparseMatrix K_n;
   if (options_.rayleigh_beta > 0.0) {  // D's stiffness part, frozen at the step's start
@@ -231,25 +231,25 @@ void DynamicElasticity::step_semi_implicit(StepReport& report) {
   stats_.assembly_seconds += since(t0);
   const Eigen::VectorXd vf = dofs_.restrict(v_);
   Eigen::VectorXd Mv, Mfree_diag;
-  if (mass_kind_ == MassKind::Consistent) {
-    Mv = M_ * vf;
+  if (!mass_->lumped()) {
+    Mv = mass_->free_matrix() * vf;
     if (moving_boundary_) {
       Eigen::VectorXd a_p = Eigen::VectorXd::Zero(x_.size());
       for (const PrescribedMotion& m : motions_)
         if (m.acceleration)
           for (int n : m.nodes) a_p.segment<3>(3 * n) = m.acceleration(mesh_.nodes.col(n), t_ + h);
-      f -= consistent_mass_times(a_p);
+      f -= mass_->consistent_times(a_p);
     }
   } else {
-    Mfree_diag = dofs_.restrict(lumped_);
+    Mfree_diag = dofs_.restrict(mass_->diagonal());
     Mv = Mfree_diag.cwiseProduct(vf);
   }
   const Eigen::VectorXd Kv = K_ * vf;
   const Eigen::VectorXd rhs = h * (dofs_.restrict(f) - alpha * Mv - beta * Kv - h * Kv);
   // A = (1 + h alpha) M + (h beta + h^2) K, in K's storage.
   Eigen::Map<Eigen::VectorXd>(K_.valuePtr(), K_.nonZeros()) *= h * beta + h * h;
-  if (mass_kind_ == MassKind::Consistent) {
-    add_scaled(K_, 1.0 + h * alpha, M_);
+  if (!mass_->lumped()) {
+    add_scaled(K_, 1.0 + h * alpha, mass_->free_matrix());
   } else {
     for (Eigen::Index i = 0; i < Mfree_diag.size(); ++i) K_.coeffRef(i, i) += (1.0 + h * alpha) * Mfree_diag[i];
   }

@@ -1,0 +1,66 @@
+#pragma once
+// The mass of a body in motion: lumped (a diagonal, row sums or HRZ) or
+// consistent (sparse, over the free DOFs for the implicit systems and over all
+// DOFs for kinetic energy and prescribed accelerations), built once from the
+// discretization, and for explicit integrators with the consistent mass its
+// CHOLMOD factor. Rebuilt when the DOF map changes (a released node set).
+// Distributed: every vector and matrix is this rank's elements' share.
+#include "assembly/sparse_matrix.hpp"
+#include "solver/discretization.hpp"
+#include "solver/linear_solver.hpp"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+
+namespace hofem {
+
+enum class MassKind { Consistent, Lumped };
+
+class MassModel {
+ public:
+  /// `degree`: the quadrature degree of N_i N_j (2p on affine cells); `factorize`:
+  /// keep a CHOLMOD factor of the free consistent mass (explicit integrators).
+  /// Throws std::invalid_argument for a lumping with a non-positive nodal mass.
+  MassModel(const Discretization& disc, double density, MassKind kind, MassLumping lumping, int degree,
+            int quadrature_degree, bool factorize);
+  MassModel(Discretization&&, double, MassKind, MassLumping, int, int, bool) = delete;  // kept by reference
+
+  bool lumped() const { return kind_ == MassKind::Lumped; }
+  int degree() const { return degree_; }
+  /// "lumped (row-sum)", "lumped (HRZ)" or "consistent".
+  std::string name() const;
+  /// Lumped: the mass per DOF, all DOFs.
+  const Eigen::VectorXd& diagonal() const { return lumped_; }
+  /// Consistent: the matrix over the free DOFs.
+  const SparseMatrix& free_matrix() const { return M_; }
+  /// M r over all DOFs (the consistent all-DOF matrix is assembled on first use).
+  Eigen::VectorXd times(const Eigen::VectorXd& r) const;
+  Eigen::VectorXd consistent_times(const Eigen::VectorXd& r) const;
+  /// x = M_ff^-1 b with the factor (made with `factorize`).
+  void solve_free(const Eigen::VectorXd& b, Eigen::VectorXd& x) const { solver_->solve(b, x); }
+  /// The smallest diagonal entry (lumped: nodal mass; consistent: of M_ff).
+  double min_diagonal() const { return lumped() ? lumped_.minCoeff() : M_.diagonal().minCoeff(); }
+  /// After the discretization's DOF map changed: the free matrix (and its factor) anew.
+  void rebuild();
+
+  int matrices_built() const { return matrices_built_; }  ///< sparse consistent mass matrices
+  int factorizations() const { return factorizations_; }
+
+ private:
+  void build_free();
+  const Discretization& disc_;
+  double density_;
+  MassKind kind_;
+  MassLumping lumping_;
+  int degree_, quadrature_degree_;
+  Eigen::VectorXd lumped_;
+  SparseMatrix M_;              ///< consistent, over the free DOFs
+  mutable SparseMatrix M_all_;  ///< consistent, over all DOFs (built on first product)
+  std::unique_ptr<LinearSolver> solver_;
+  mutable int matrices_built_ = 0;
+  int factorizations_ = 0;
+};
+
+}  // namespace hofem
