@@ -23,7 +23,6 @@ Discretization::Discretization(const Mesh& mesh, bool distributed, const Element
 Discretization::Discretization(std::unique_ptr<DistributedMesh> piece, int quadrature_degree)
     : piece_(std::move(piece)), quadrature_degree_(quadrature_degree) {
   ensure_hypre();
-  given_ = &piece_->mesh();
   owned_.resize(piece_->mesh().num_nodes());
   for (int n = 0; n < piece_->mesh().num_nodes(); ++n) owned_[n] = piece_->local.owns(n);
 }
@@ -37,11 +36,11 @@ void Discretization::constrain(const std::vector<int>& nodes) {
 }
 
 std::vector<int> Discretization::local_nodes(const std::vector<int>& ids) const {
-  return piece_ && given_ != &piece_->mesh() ? to_local_nodes(piece_->local, ids) : ids;
+  return piece_ && given_ ? to_local_nodes(piece_->local, ids) : ids;
 }
 
 Eigen::VectorXd Discretization::local_nodal(const Eigen::VectorXd& given) const {
-  if (!piece_ || given.size() == 0 || given_ == &piece_->mesh()) return given;
+  if (!piece_ || !given_ || given.size() == 0) return given;
   const LocalMesh& local = piece_->local;
   Eigen::VectorXd mine(3 * local.mesh.num_nodes());
   for (int i = 0; i < local.mesh.num_nodes(); ++i) mine.segment<3>(3 * i) = given.segment<3>(3 * local.global_node[i]);
@@ -54,7 +53,19 @@ SolverChoice Discretization::choose_solver(const SolverSpec& spec) const {
 }
 
 std::unique_ptr<LinearSolver> Discretization::make_solver(const SolverSpec& resolved, const std::vector<int>* blocks) {
-  return make_problem_solver(piece_.get(), rows_, resolved, mesh(), dofs_, blocks);
+  if (!piece_) {
+    std::unique_ptr<LinearSolver> solver = make_linear_solver(resolved);
+    solver->set_mesh_view({&mesh(), &dofs_, blocks});
+    return solver;
+  }
+  // The global rows of this DOF map; the hypre system refers to them, so a
+  // solver made before must be gone (constrain() says so).
+  rows_ = std::make_unique<DistributedDofs>(distribute_dofs(*piece_, dofs_));
+  auto hypre = std::make_unique<DistributedHypreSolver>(*rows_, resolved.distributed);
+  hypre->system().set_coordinates(mesh(), dofs_);
+  apply_iteration_budget(*hypre, resolved.fixed_iterations);
+  hypre->set_mesh_view({&mesh(), &dofs_, nullptr});
+  return hypre;
 }
 
 RankStats Discretization::rank_stats(const LinearSolver& solver) const {

@@ -66,7 +66,7 @@ class Discretization {
   long long global_free_dofs() const { return rows_ ? rows_->global_rows : dofs_.num_free(); }
 
   /// Node ids of the mesh given to the constructor as ids on mesh() (those on
-  /// this piece; all of them serially).
+  /// this piece; all of them serially, or for a piece made by its rank).
   std::vector<int> local_nodes(const std::vector<int>& ids) const;
   /// A nodal field of the given mesh (3 values per node) on mesh().
   Eigen::VectorXd local_nodal(const Eigen::VectorXd& given) const;
@@ -117,7 +117,7 @@ class Discretization {
   RankStats rank_stats(const LinearSolver& solver) const;
 
  private:
-  const Mesh* given_ = nullptr;
+  const Mesh* given_ = nullptr;  ///< the mesh given to the constructor; null for a piece made by its rank
   std::unique_ptr<DistributedMesh> piece_;
   ElementRules rules_;
   std::vector<int> unsupported_;

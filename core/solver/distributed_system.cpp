@@ -229,21 +229,4 @@ void DistributedHypreSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x)
   if (!last_.converged) throw std::runtime_error(last_.message);
 }
 
-std::unique_ptr<LinearSolver> make_problem_solver(const DistributedMesh* piece, std::unique_ptr<DistributedDofs>& rows,
-                                                  const SolverSpec& spec, const Mesh& mesh, const DofMap& dofs,
-                                                  const std::vector<int>* blocks) {
-  std::unique_ptr<LinearSolver> solver;
-  if (piece) {
-    rows = std::make_unique<DistributedDofs>(distribute_dofs(*piece, dofs));
-    auto hypre = std::make_unique<DistributedHypreSolver>(*rows, spec.distributed);
-    hypre->system().set_coordinates(mesh, dofs);
-    solver = std::move(hypre);
-    apply_iteration_budget(*solver, spec.fixed_iterations);
-  } else {
-    solver = make_linear_solver(spec);
-  }
-  solver->set_mesh_view({&mesh, &dofs, piece ? nullptr : blocks});
-  return solver;
-}
-
 }  // namespace hofem

@@ -111,13 +111,4 @@ class DistributedHypreSolver final : public LinearSolver {
   std::string error_;
 };
 
-/// The linear solver of a problem on `mesh` with `dofs`. Distributed (piece set,
-/// collective): the global rows of the piece's free DOFs are numbered into
-/// `rows` (which the solver refers to: keep it alive and unchanged while the
-/// solver lives) and hypre solves with spec.distributed. Serial:
-/// make_linear_solver(spec) (resolved: not "auto"), with `blocks` for block preconditioners.
-std::unique_ptr<LinearSolver> make_problem_solver(const DistributedMesh* piece, std::unique_ptr<DistributedDofs>& rows,
-                                                  const SolverSpec& spec, const Mesh& mesh, const DofMap& dofs,
-                                                  const std::vector<int>* blocks);
-
 }  // namespace hofem
