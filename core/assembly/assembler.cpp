@@ -190,11 +190,6 @@ void Assembler::set_element_quadrature(ElementQuadratureList per_element) {
   element_quadrature_ = std::move(per_element);
 }
 
-void Assembler::set_element_mass_quadrature(ElementQuadratureList per_element) {
-  check_rules(mesh_, per_element, "mass");
-  mass_quadrature_ = std::move(per_element);
-}
-
 void Assembler::set_element_rules(const ElementRules& rules) {
   check_rules(mesh_, rules.stiffness, "stiffness");
   check_rules(mesh_, rules.mass, "mass");

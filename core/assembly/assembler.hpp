@@ -81,12 +81,9 @@ class Assembler {
   /// empty rule makes the element contribute nothing. Empty vector: all standard.
   /// Throws std::invalid_argument if the size or an entry's cell/basis does not match.
   void set_element_quadrature(ElementQuadratureList per_element);
-  const ElementQuadratureList& element_quadrature() const { return element_quadrature_; }
-  /// The same for mass matrices, lumped mass, mass actions and body loads (whose
-  /// `degree` argument then applies to the elements with null entries only).
-  void set_element_mass_quadrature(ElementQuadratureList per_element);
-  const ElementQuadratureList& element_mass_quadrature() const { return mass_quadrature_; }
-  /// Both families at once (finite_cell_quadrature's element_rules()).
+  /// The stiffness rules as above and the same for mass matrices, lumped mass,
+  /// mass actions and body loads (whose `degree` argument then applies to the
+  /// elements with null mass entries only): finite_cell_quadrature's element_rules().
   void set_element_rules(const ElementRules& rules);
 
   /// A zero matrix with the free-DOF pattern.
