@@ -75,11 +75,6 @@ inline Eigen::VectorXd golub_welsch_nodes(int n, int alpha, int beta) {
   return es.eigenvalues();  // ascending
 }
 
-template <class Real>
-Real abs_value(Real x) {
-  return x < Real(0) ? -x : x;
-}
-
 /// Nodes (ascending) and weights of the n-point Gauss–Jacobi rule, computed in Real.
 template <class Real>
 void gauss_jacobi(int n, int alpha, int beta, std::vector<Real>& x, std::vector<Real>& w) {
