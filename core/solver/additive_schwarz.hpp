@@ -66,8 +66,7 @@ class AdditiveSchwarzPreconditioner final : public Preconditioner {
 
   const AdditiveSchwarzOptions& options() const { return options_; }
   int num_blocks() const { return static_cast<int>(block_element_.size()); }
-  /// Element of block b and its free DOFs (the rows/columns of R_K).
-  int block_element(int b) const { return block_element_[b]; }
+  /// Free DOFs of block b (the rows/columns of R_K).
   std::span<const int> block_dofs(int b) const;
   /// S_K = C_K^+ of block b after setup() (dense, column-major, symmetric).
   Eigen::Map<const Eigen::MatrixXd> block_inverse(int b) const;

@@ -97,6 +97,4 @@ void CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(X_->x), b.size());
 }
 
-double CholmodSolver::factor_nonzeros() const { return factor_ ? common_.lnz : 0.0; }
-
 }  // namespace hofem

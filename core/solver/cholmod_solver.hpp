@@ -30,9 +30,6 @@ class CholmodSolver final : public LinearSolver {
   bool factorize(const SparseMatrix& A) override;
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
 
-  /// Entries of the last factor (reported by benchmarks).
-  double factor_nonzeros() const;
-
  private:
   cholmod_sparse view(const SparseMatrix& A) const;
   cholmod_common common_;

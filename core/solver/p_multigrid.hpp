@@ -78,9 +78,6 @@ class PMultigridPreconditioner final : public Preconditioner {
   const PMultigridOptions& options() const { return options_; }
   /// Levels including the order-1 level (0 before the first setup).
   int num_levels() const { return hierarchy_ ? hierarchy_->num_levels() : 0; }
-  /// Order and unknowns of level l (0: the fine level).
-  int level_order(int l) const { return hierarchy_->level(l).order; }
-  Eigen::Index level_size(int l) const { return 3 * static_cast<Eigen::Index>(hierarchy_->level(l).num_free_nodes); }
   /// Upper end of level l's Chebyshev interval (safety times the Lanczos estimate;
   /// every level but the order-1 one).
   double lambda_max(int l) const { return levels_[l].lambda_max; }
