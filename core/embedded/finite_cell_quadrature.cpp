@@ -171,15 +171,6 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
         ws = std::move(s.weights);
       }
     }
-    if (options.simplify_mass) {
-      SimplifiedRule s = simplify_quadrature(xm, wm, out.mass_degree);
-      failed[e] = failed[e] || (!s.simplified && s.points_before > s.basis_size);
-      residual[e] = std::max(residual[e], s.moment_residual);
-      if (s.simplified) {
-        xm = std::move(s.points);
-        wm = std::move(s.weights);
-      }
-    }
     lp_seconds[e] = seconds_since(tl);
     out.points_after[e] = static_cast<int>(ws.size());
     out.rules[e] = make_rule(cell, p, std::move(xs), std::move(ws));

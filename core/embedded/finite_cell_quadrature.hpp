@@ -23,7 +23,7 @@
 //    prefer exactness at the price of 35 instead of 10 (Hex8) and 84 instead of
 //    35 (Hex20) points per cut cell;
 //  - mass and body loads: a higher strength (default 2 x the basis' highest total
-//    degree: exact for N_i N_j on an affine cell), not simplified by default
+//    degree: exact for N_i N_j on an affine cell), not simplified
 //    (Longva et al. 2020: "only needed once").
 // Uncut cells (volume fraction 1) keep the standard rules (null entries).
 #include "basis/basis_tabulation.hpp"
@@ -43,7 +43,6 @@ struct FiniteCellOptions {
   int stiffness_degree = -1;    ///< < 0: tet 2p, hex 2 (d - 1) (Hex8 4, Hex20 6), see above
   int mass_degree = -1;         ///< < 0: 2 x highest total degree of the basis (Tet p, Hex8 3, Hex20 4)
   bool simplify = true;         ///< LP simplification (§4.4) of the stiffness rules
-  bool simplify_mass = false;   ///< ... and of the mass rules
   /// Uncut cells get null rules (the Assembler's standard rules). false keeps
   /// their clipped rules (tests that compare the two).
   bool standard_rule_inside = true;
@@ -86,7 +85,7 @@ struct CellQuadrature {
   std::vector<double> moment_residual;
   long long points = 0;             ///< stiffness points before simplification, summed over cut cells
   long long simplified_points = 0;  ///< ... after
-  long long mass_points = 0;        ///< mass points over cut cells (after any simplification)
+  long long mass_points = 0;        ///< mass points over cut cells
   int simplification_failures = 0;  ///< cells whose LP failed (their clipped rule is kept)
   double max_moment_residual = 0.0;
   double generation_seconds = 0.0;      ///< clipping and mapping, summed over threads
