@@ -16,7 +16,6 @@ struct HyprePcgResult {
   int iterations = 0;                 ///< summed over restarts
   int restarts = 0;                   ///< re-runs from the last iterate because the true residual missed
   double relative_residual = 0.0;     ///< true ||b - A x|| / ||b||
-  double hypre_relative_residual = 0.0;  ///< hypre's (recursively updated) estimate at its stop
 };
 
 class HyprePcgSolver final : public LinearSolver {
