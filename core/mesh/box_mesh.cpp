@@ -59,22 +59,23 @@ static void assign_box_node_sets(Mesh& mesh, const BoxSpec& b) {
   mesh.node_sets["boundary"] = std::move(boundary);
 }
 
-Mesh box_tet_mesh(const BoxSpec& b) {
+// The order-1 mesh of box b: each lattice cell, in lattice order, gives the
+// elements of `per_cell` (their nodes as indices into its cube_corners).
+template <int Nodes, int PerCell>
+static Mesh box_linear_mesh(const BoxSpec& b, CellType cell, const int (&per_cell)[PerCell][Nodes]) {
   check_box(b);
   Mesh m;
-  m.cell = CellType::Tetrahedron;
+  m.cell = cell;
   m.order = 1;
   m.nodes = lattice_nodes(b);
-  m.elements.resize(4, 6 * b.cells[0] * b.cells[1] * b.cells[2]);
-  // Six tetrahedra sharing the diagonal c0-c6, each positively oriented.
-  const int tets[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+  m.elements.resize(Nodes, PerCell * b.cells[0] * b.cells[1] * b.cells[2]);
   int e = 0;
   for (int k = 0; k < b.cells[2]; ++k)
     for (int j = 0; j < b.cells[1]; ++j)
       for (int i = 0; i < b.cells[0]; ++i) {
         const auto c = cube_corners(b, i, j, k);
-        for (const auto& t : tets) {
-          for (int v = 0; v < 4; ++v) m.elements(v, e) = c[t[v]];
+        for (const auto& t : per_cell) {
+          for (int v = 0; v < Nodes; ++v) m.elements(v, e) = c[t[v]];
           ++e;
         }
       }
@@ -82,22 +83,15 @@ Mesh box_tet_mesh(const BoxSpec& b) {
   return m;
 }
 
+Mesh box_tet_mesh(const BoxSpec& b) {
+  // Six tetrahedra sharing the diagonal c0-c6, each positively oriented.
+  const int tets[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+  return box_linear_mesh(b, CellType::Tetrahedron, tets);
+}
+
 Mesh box_hex_mesh(const BoxSpec& b) {
-  check_box(b);
-  Mesh m;
-  m.cell = CellType::Hexahedron;
-  m.order = 1;
-  m.nodes = lattice_nodes(b);
-  m.elements.resize(8, b.cells[0] * b.cells[1] * b.cells[2]);
-  int e = 0;
-  for (int k = 0; k < b.cells[2]; ++k)
-    for (int j = 0; j < b.cells[1]; ++j)
-      for (int i = 0; i < b.cells[0]; ++i, ++e) {
-        const auto c = cube_corners(b, i, j, k);
-        for (int v = 0; v < 8; ++v) m.elements(v, e) = c[v];
-      }
-  assign_box_node_sets(m, b);
-  return m;
+  const int hex[1][8] = {{0, 1, 2, 3, 4, 5, 6, 7}};
+  return box_linear_mesh(b, CellType::Hexahedron, hex);
 }
 
 Mesh box_mesh(const BoxSpec& b, CellType cell, int order) {
