@@ -47,7 +47,6 @@ struct FieldError {
   double max_pointwise = 0;                ///< max_q |u_run - u_ref|
   double volume = 0;                       ///< sum of the weights
   double extrapolated_volume = 0;          ///< of the points outside the run's domain
-  long long points = 0, extrapolated_points = 0;
   /// The RMS displacement error sqrt(e_L2^2 / volume): a length, like the surface distance.
   double rms() const;
 };
