@@ -92,9 +92,8 @@ class StaticElasticity final : public NonlinearProblem {
   const Eigen::VectorXd& displacement() const { return u_full_; }
   /// The mesh the problem lives on: the given one, or (distributed) this rank's piece.
   const Mesh& mesh() const { return disc_->mesh(); }
-  /// Distributed runs: the piece, its halo and the global numbering; else null.
+  /// Distributed runs: the piece and its halo; else null.
   const DistributedMesh* distributed_mesh() const { return disc_->piece(); }
-  const DistributedDofs* distributed_dofs() const { return disc_->rows(); }
   /// Distributed: this rank's figures (mesh piece, halo, matrix, AMG and Krylov
   /// timings) so far; collective-free. Serial: throws std::logic_error.
   RankStats rank_stats() const;

@@ -52,14 +52,6 @@ struct QuadratureRule {
   bool all_weights_positive() const { return min_weight() > 0.0; }
   bool all_points_interior() const { return min_interior_margin() > kInteriorTolerance; }
   bool positive_interior() const { return all_weights_positive() && all_points_interior(); }
-
-  /// Integrates f over the reference cell: sum_q w_q f(x_q).
-  template <class F>
-  double integrate(F&& f) const {
-    double s = 0.0;
-    for (int q = 0; q < size(); ++q) s += weights[q] * f(points.col(q));
-    return s;
-  }
 };
 
 }  // namespace hofem

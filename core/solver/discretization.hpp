@@ -53,8 +53,6 @@ class Discretization {
   const Assembler& assembler() const { return *assembler_; }
   /// The element rules on mesh() (restricted to the piece).
   const ElementRules& rules() const { return rules_; }
-  /// Finite cells: nodes of mesh() that no element integrates anything for.
-  const std::vector<int>& unsupported() const { return unsupported_; }
 
   bool distributed() const { return piece_ != nullptr; }
   /// Distributed: the piece, its halo and the global numbering (after

@@ -99,7 +99,6 @@ class DistributedHypreSolver final : public LinearSolver {
   bool is_iterative() const override { return true; }
   int last_iterations() const override { return last_.iterations; }
   std::string last_error() const override { return error_; }
-  const DistributedSolveResult& last() const { return last_; }
   DistributedLinearSystem& system() { return system_; }
   const DistributedLinearSystem& system() const { return system_; }
 

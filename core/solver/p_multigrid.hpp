@@ -78,9 +78,6 @@ class PMultigridPreconditioner final : public Preconditioner {
   const PMultigridOptions& options() const { return options_; }
   /// Levels including the order-1 level (0 before the first setup).
   int num_levels() const { return hierarchy_ ? hierarchy_->num_levels() : 0; }
-  /// Upper end of level l's Chebyshev interval (safety times the Lanczos estimate;
-  /// every level but the order-1 one).
-  double lambda_max(int l) const { return levels_[l].lambda_max; }
   /// True when the order-1 level is factorised, false when BoomerAMG handles it.
   bool direct_coarse() const { return direct_coarse_; }
   /// Symbolic analyses of the order-1 operator by CHOLMOD so far (one per pattern).

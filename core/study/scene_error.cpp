@@ -13,7 +13,7 @@ SurfaceLattice run_surface_lattice(const RecordedRun& run, int subdivisions) {
 }
 
 ReferenceMeasure::ReferenceMeasure(const RecordedRun& reference, int subdivisions)
-    : reference_(reference), subdivisions_(subdivisions) {
+    : reference_(reference) {
   const int degree = reference.mesh.order + 1;
   quadrature_ = body_quadrature(reference.mesh, degree, reference.own_rules);
   const SurfaceLattice lattice = run_surface_lattice(reference, subdivisions);

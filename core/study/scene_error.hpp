@@ -36,11 +36,9 @@ class ReferenceMeasure {
   const TriangleSurface& surface(size_t state) const { return surfaces_.at(state); }
   /// The reference's displacement and gradient at its quadrature points.
   const PointValues& values(size_t state) const { return values_.at(state); }
-  int subdivisions() const { return subdivisions_; }
 
  private:
   const RecordedRun& reference_;
-  int subdivisions_;
   BodyQuadrature quadrature_;
   std::vector<TriangleSurface> surfaces_;
   std::vector<PointValues> values_;
