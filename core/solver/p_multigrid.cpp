@@ -292,10 +292,8 @@ double PMultigridPreconditioner::bytes_per_apply() const {
   return bytes;
 }
 
-std::unique_ptr<Preconditioner> make_p_multigrid_preconditioner() { return make_p_multigrid_preconditioner({}); }
-
-std::unique_ptr<Preconditioner> make_p_multigrid_preconditioner(const PMultigridOptions& options) {
-  return std::make_unique<PMultigridPreconditioner>(options);
+std::unique_ptr<Preconditioner> make_p_multigrid_preconditioner() {
+  return std::make_unique<PMultigridPreconditioner>();
 }
 
 }  // namespace hofem

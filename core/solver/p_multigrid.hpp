@@ -127,6 +127,5 @@ class PMultigridPreconditioner final : public Preconditioner {
 
 /// "pmg" with the default options.
 std::unique_ptr<Preconditioner> make_p_multigrid_preconditioner();
-std::unique_ptr<Preconditioner> make_p_multigrid_preconditioner(const PMultigridOptions& options);
 
 }  // namespace hofem
