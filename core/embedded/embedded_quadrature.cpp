@@ -10,12 +10,6 @@
 
 namespace hofem {
 
-double PhysicalRule::volume() const {
-  double v = 0.0;
-  for (double w : weights) v += w;
-  return v;
-}
-
 std::vector<Tetrahedron> mesh_tetrahedra(const Mesh& mesh) {
   if (mesh.cell != CellType::Tetrahedron)
     throw std::invalid_argument("mesh_tetrahedra: the embedded geometry must be a tetrahedral mesh");

@@ -25,7 +25,6 @@ struct PhysicalRule {
   std::vector<Eigen::Vector3d> points;
   std::vector<double> weights;
   int size() const { return static_cast<int>(weights.size()); }
-  double volume() const;
 };
 
 /// The vertex tetrahedra of a tetrahedral mesh (its order-1 geometry).

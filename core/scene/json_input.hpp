@@ -46,7 +46,6 @@ class Field {
   [[noreturn]] void fail(const std::string& what) const {
     throw SceneError(fmt::format("{}: {} {}", origin_, path_.empty() ? document_ : path_, what));
   }
-  const std::string& path() const { return path_; }
   const nlohmann::json& raw() const { return j_; }
 
   /// Requires an object whose keys are all in `allowed`.

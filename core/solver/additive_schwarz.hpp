@@ -64,7 +64,6 @@ class AdditiveSchwarzPreconditioner final : public Preconditioner {
   /// Uses workspace owned by this object: one apply() at a time per object.
   void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const override;
 
-  const AdditiveSchwarzOptions& options() const { return options_; }
   int num_blocks() const { return static_cast<int>(block_element_.size()); }
   /// Free DOFs of block b (the rows/columns of R_K).
   std::span<const int> block_dofs(int b) const;

@@ -75,7 +75,6 @@ class PMultigridPreconditioner final : public Preconditioner {
   bool setup(const SparseMatrix& A, const BlockSparseMatrix<double>& blocks) override;
   void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const override;
 
-  const PMultigridOptions& options() const { return options_; }
   /// Levels including the order-1 level (0 before the first setup).
   int num_levels() const { return hierarchy_ ? hierarchy_->num_levels() : 0; }
   /// True when the order-1 level is factorised, false when BoomerAMG handles it.
