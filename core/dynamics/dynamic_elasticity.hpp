@@ -6,6 +6,7 @@
 #include "dynamics/dynamics_diagnostics.hpp"
 #include "dynamics/elastic_body.hpp"
 #include "dynamics/time_stepper.hpp"
+#include "parallel/rank_stats.hpp"
 
 #include <Eigen/Core>
 

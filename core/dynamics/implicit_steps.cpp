@@ -61,26 +61,14 @@ class TimeStepper::IncrementalPotential final : public NonlinearProblem {
     return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
   }
   double gradient(const Eigen::VectorXd& y, Eigen::VectorXd& g) override {
-    set(y);
-    const auto t0 = std::chrono::steady_clock::now();
-    Eigen::VectorXd g_all;
     double psi = 0.0;
-    s_.disc().on_all_ranks_or_throw<MaterialDomainError>(kOutside, [&] { psi = s_.disc().assembler().gradient(s_.material(), x_, g_all); });
-    s_.counters().assembly_seconds += since(t0);
-    ++s_.counters().gradient_evaluations;
-    g = s_.dofs().restrict(g_all - s_.gravity_load() - floor_forces()) + quadratic_gradient(y);
-    s_.disc().complete_free(g);
+    assemble(y, s_.counters().gradient_evaluations, g,
+             [&](Eigen::VectorXd& g_all) { psi = s_.disc().assembler().gradient(s_.material(), x_, g_all); });
     return s_.disc().sum(psi + quadratic(y) + floor_energy());
   }
   void hessian(const Eigen::VectorXd& y, Eigen::VectorXd& g, SparseMatrix& K, bool project) override {
-    set(y);
-    const auto t0 = std::chrono::steady_clock::now();
-    Eigen::VectorXd g_all;
-    s_.disc().on_all_ranks_or_throw<MaterialDomainError>(kOutside, [&] { s_.disc().assembler().hessian(s_.material(), x_, g_all, K, project); });
-    s_.counters().assembly_seconds += since(t0);
-    ++s_.counters().hessian_assemblies;
-    g = s_.dofs().restrict(g_all - s_.gravity_load() - floor_forces()) + quadratic_gradient(y);
-    s_.disc().complete_free(g);
+    assemble(y, s_.counters().hessian_assemblies, g,
+             [&](Eigen::VectorXd& g_all) { s_.disc().assembler().hessian(s_.material(), x_, g_all, K, project); });
     // Distributed: K is this rank's share (its elements' mass and stiffness, its
     // owned nodes' floor blocks); hypre sums the shares.
     if (s_.options().floor) s_.options().floor->add_hessian(x_, s_.dofs(), K, s_.disc().counted_nodes());
@@ -110,6 +98,20 @@ class TimeStepper::IncrementalPotential final : public NonlinearProblem {
   }
 
  private:
+  // `assemble_elastic` (the elastic gradient, with or without the Hessian) at
+  // y on every rank together, timed and counted; then the whole gradient over
+  // the free DOFs, completed over ranks.
+  template <class F>
+  void assemble(const Eigen::VectorXd& y, int& counter, Eigen::VectorXd& g, F&& assemble_elastic) {
+    set(y);
+    const auto t0 = std::chrono::steady_clock::now();
+    Eigen::VectorXd g_all;
+    s_.disc().on_all_ranks_or_throw<MaterialDomainError>(kOutside, [&] { assemble_elastic(g_all); });
+    s_.counters().assembly_seconds += since(t0);
+    ++counter;
+    g = s_.dofs().restrict(g_all - s_.gravity_load() - floor_forces()) + quadratic_gradient(y);
+    s_.disc().complete_free(g);
+  }
   void set(const Eigen::VectorXd& z) {
     for (int k = 0; k < z.size(); ++k) x_[s_.dofs().free_dofs()[k]] = y_n_[k] + z[k];
   }

@@ -6,7 +6,6 @@
 // (implicit_steps.cpp, symbolic analysis reused every step). A failed step
 // leaves the state at the last good one and says why.
 #include "dynamics/elastic_body.hpp"
-#include "parallel/rank_stats.hpp"
 #include "solver/linear_solver.hpp"
 
 #include <Eigen/Core>

@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 #include <mpi.h>
 
+#include <string>
+
 namespace hofem {
 
 double sum_over_ranks(double value, MPI_Comm comm);
@@ -19,8 +21,9 @@ double max_over_ranks(double value, MPI_Comm comm);
 bool any_rank(bool flag, MPI_Comm comm);
 
 /// Runs f. Distributed: every rank then learns whether f threw E on any rank,
-/// and if so all throw E(what) together, so that none is left waiting in the
-/// next collective. Serial: f runs and its exceptions pass unchanged.
+/// and if so all throw E together - the failing rank with its own message, the
+/// others with E(what) - so that none is left waiting in the next collective.
+/// Serial: f runs and its exceptions pass unchanged.
 template <class E, class F>
 void on_all_ranks_or_throw(bool distributed, MPI_Comm comm, const char* what, F&& f) {
   if (!distributed) {
@@ -28,12 +31,14 @@ void on_all_ranks_or_throw(bool distributed, MPI_Comm comm, const char* what, F&
     return;
   }
   bool failed = false;
+  std::string message = what;
   try {
     f();
-  } catch (const E&) {
+  } catch (const E& e) {
     failed = true;
+    message = e.what();
   }
-  if (any_rank(failed, comm)) throw E(what);
+  if (any_rank(failed, comm)) throw E(message);
 }
 
 }  // namespace hofem

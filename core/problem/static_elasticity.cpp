@@ -60,24 +60,14 @@ StaticElasticity::StaticElasticity(std::unique_ptr<DistributedMesh> piece, const
     throw std::invalid_argument("static problem: element rules and external loads need the global mesh (the other constructor)");
   disc_ = std::make_unique<Discretization>(std::move(piece), options_.quadrature_degree);
   const Mesh& m = disc_->mesh();
-  // Each rank checks its own piece; all learn whether any failed (the message is the failing rank's).
-  std::string problem;
-  try {
-    validate_mesh(m);
-  } catch (const MeshError& e) {
-    problem = e.what();
-  }
-  if (disc_->any(!problem.empty()))
-    throw MeshError(problem.empty() ? std::string("static problem: another rank's piece of the mesh is invalid") : problem);
+  // Each rank checks its own piece; all learn whether any failed (the set-up
+  // below is collective), the failing rank with its own message.
+  disc_->on_all_ranks_or_throw<MeshError>("static problem: another rank's piece of the mesh is invalid",
+                                          [&] { validate_mesh(m); });
   std::vector<int> constrained;
-  std::string bad_node;
-  try {
-    constrained = constrained_nodes(dirichlet_, m.num_nodes());
-  } catch (const std::invalid_argument& e) {
-    bad_node = e.what();
-  }
-  if (disc_->any(!bad_node.empty()))  // decided together: the set-up below is collective
-    throw std::invalid_argument(bad_node.empty() ? std::string("static problem: a Dirichlet node is out of range on another rank") : bad_node);
+  disc_->on_all_ranks_or_throw<std::invalid_argument>(
+      "static problem: a Dirichlet node is out of range on another rank",
+      [&] { constrained = constrained_nodes(dirichlet_, m.num_nodes()); });
   finish_setup(constrained, Eigen::VectorXd(), body_force);
   setup_seconds_hint_ = seconds_since(t0);
 }

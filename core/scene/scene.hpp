@@ -116,6 +116,7 @@ struct Scene {
   double young = 1e6, poisson = 0.3, density = 1000.0;
   // time stepping
   bool is_static = false;
+  /// Its ProblemOptions part (solver, Newton) serves a static scene too.
   DynamicsOptions dynamics;
   double duration = 1.0;
   std::vector<SceneBoundary> boundary;

@@ -21,6 +21,13 @@
 
 namespace hofem {
 
+// What a dynamic run built and evaluated, each counter under its own name.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DynamicsStats, linear_solver, linear_solver_reason, mass, mass_matrices_built,
+                                   mass_factorizations, gradient_evaluations, energy_evaluations, hessian_assemblies,
+                                   symbolic_analyses, factorizations, newton_iterations, linear_iterations,
+                                   floor_evaluations, step_halvings, releases, contact_node_steps, max_penetration,
+                                   polar_decompositions, assembly_seconds, solve_seconds)
+
 namespace {
 
 using json = nlohmann::json;
@@ -122,29 +129,6 @@ void progress_bar(double fraction, double t, bool done) {
   std::fflush(stderr);
 }
 
-json stats_json(const DynamicsStats& st) {
-  return json{{"linear_solver", st.linear_solver},
-              {"linear_solver_reason", st.linear_solver_reason},
-              {"mass", st.mass},
-              {"mass_matrices_built", st.mass_matrices_built},
-              {"mass_factorizations", st.mass_factorizations},
-              {"gradient_evaluations", st.gradient_evaluations},
-              {"energy_evaluations", st.energy_evaluations},
-              {"hessian_assemblies", st.hessian_assemblies},
-              {"symbolic_analyses", st.symbolic_analyses},
-              {"factorizations", st.factorizations},
-              {"newton_iterations", st.newton_iterations},
-              {"linear_iterations", st.linear_iterations},
-              {"floor_evaluations", st.floor_evaluations},
-              {"step_halvings", st.step_halvings},
-              {"releases", st.releases},
-              {"contact_node_steps", st.contact_node_steps},
-              {"max_penetration", st.max_penetration},
-              {"polar_decompositions", st.polar_decompositions},
-              {"assembly_seconds", st.assembly_seconds},
-              {"solve_seconds", st.solve_seconds}};
-}
-
 // Removes what an earlier run wrote into the output directory - frames, .pvd
 // indexes, stats.json, partial files of a killed run - so that a run's folder
 // never mixes two runs (a frame 40 of the old run beside frames 0-20 of the new
@@ -222,7 +206,7 @@ struct SceneRun {
   void write_outputs();
 };
 
-// What a static solve built and evaluated (the static counterpart of stats_json).
+// What a static solve built and evaluated (the static counterpart of DynamicsStats' JSON).
 json static_stats_json(const StaticReport& r) {
   return {{"linear_solver", r.linear_solver},
           {"linear_solver_reason", r.linear_solver_reason},
@@ -253,9 +237,8 @@ void SceneRun::run_static(std::vector<PrescribedMotion> motions) {
     dirichlet.push_back({m.nodes, [position](const Eigen::Vector3d& X) { return Eigen::Vector3d(position(X, 1e300) - X); }});
   }
   StaticOptions so;
+  static_cast<ProblemOptions&>(so) = s.dynamics;  // what both problems share: solver, Newton, quadrature
   so.distributed = options.distributed;
-  so.solver = s.dynamics.solver;
-  so.newton = s.dynamics.newton;
   if (emb) {
     so.element_rules = emb->element_rules();
     so.preconditioner_blocks = emb->preconditioner_blocks();
@@ -355,7 +338,7 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
   st["steps_done"] = done;
   st["deformation"] = deformation.to_json();
   st["stepping_seconds"] = std::chrono::duration<double>(Clock::now() - t_steps).count();  // frames included
-  st["built"] = stats_json(sim.stats());
+  st["built"] = sim.stats();
   if (piece && done > 0) st["per_rank"] = to_json(gather_rank_stats(sim.rank_stats(), piece->comm));
   if (result.ok) result.message = fmt::format("{} steps to t = {:.6g}", done, sim.time());
 }
