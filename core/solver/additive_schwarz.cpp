@@ -161,11 +161,9 @@ bool AdditiveSchwarzPreconditioner::build_blocks() {
   }
   std::sort(selected.begin(), selected.end());
   selected.erase(std::unique(selected.begin(), selected.end()), selected.end());
-  if (!selected.empty() && (selected.front() < 0 || selected.back() >= mesh.num_elements())) {
-    error_ = fmt::format("schwarz: element id {} out of range (mesh has {} elements)",
-                         selected.front() < 0 ? selected.front() : selected.back(), mesh.num_elements());
-    return false;
-  }
+  if (!selected.empty() && (selected.front() < 0 || selected.back() >= mesh.num_elements()))
+    return fail(fmt::format("schwarz: element id {} out of range (mesh has {} elements)",
+                            selected.front() < 0 ? selected.front() : selected.back(), mesh.num_elements()));
   block_element_.clear();
   dofs_.clear();
   dof_ptr_.assign(1, 0);
@@ -245,21 +243,14 @@ bool AdditiveSchwarzPreconditioner::entry_map_matches(const SparseMatrix& A) con
 bool AdditiveSchwarzPreconditioner::setup(const SparseMatrix& A) {
   error_.clear();
   ready_ = false;
-  if (!mesh_view_.valid()) {
-    error_ = "schwarz: needs the mesh and DOF map (set_mesh_view) before setup";
-    return false;
-  }
-  if (A.rows() != mesh_view_.dofs->num_free() || A.cols() != A.rows()) {
-    error_ = fmt::format("schwarz: matrix is {}x{} but the DOF map has {} free DOFs", A.rows(), A.cols(),
-                         mesh_view_.dofs->num_free());
-    return false;
-  }
+  if (!mesh_view_.valid()) return fail("schwarz: needs the mesh and DOF map (set_mesh_view) before setup");
+  if (A.rows() != mesh_view_.dofs->num_free() || A.cols() != A.rows())
+    return fail(fmt::format("schwarz: matrix is {}x{} but the DOF map has {} free DOFs", A.rows(), A.cols(),
+                            mesh_view_.dofs->num_free()));
   for (Eigen::Index c = 0; c < A.outerSize(); ++c)
     for (SparseMatrix::InnerIterator it(A, c); it; ++it)
-      if (!std::isfinite(it.value())) {
-        error_ = fmt::format("schwarz: matrix entry ({}, {}) is {}", it.row(), it.col(), it.value());
-        return false;
-      }
+      if (!std::isfinite(it.value()))
+        return fail(fmt::format("schwarz: matrix entry ({}, {}) is {}", it.row(), it.col(), it.value()));
   if (!blocks_built_ && !build_blocks()) return false;
   if (!entry_map_matches(A)) build_entry_map(A);
 
@@ -279,21 +270,16 @@ bool AdditiveSchwarzPreconditioner::setup(const SparseMatrix& A) {
     truncated += inverter.truncated;
     reflected += inverter.reflected;
   }
-  if (first_failed < nb) {
-    error_ = fmt::format("schwarz: block of element {} ({} DOFs) is zero or its eigen-decomposition failed",
-                         block_element_[first_failed], dof_ptr_[first_failed + 1] - dof_ptr_[first_failed]);
-    return false;
-  }
+  if (first_failed < nb)
+    return fail(fmt::format("schwarz: block of element {} ({} DOFs) is zero or its eigen-decomposition failed",
+                            block_element_[first_failed], dof_ptr_[first_failed + 1] - dof_ptr_[first_failed]));
   num_truncated_ = truncated;
   num_reflected_ = reflected;
 
   // Uncovered DOFs: 1 / |A_ii| (eq. 14 for a 1 x 1 block); covered ones stay 0.
   for (const int f : uncovered_) {
     const double d = A.coeff(f, f);
-    if (d == 0.0) {
-      error_ = fmt::format("schwarz: diagonal entry {} (in no block) is zero", f);
-      return false;
-    }
+    if (d == 0.0) return fail(fmt::format("schwarz: diagonal entry {} (in no block) is zero", f));
     jacobi_[f] = 1.0 / std::abs(d);
   }
   ready_ = true;

@@ -168,10 +168,7 @@ Eigen::MatrixXd rigid_rotations(const MeshView& d, const Eigen::Vector3d* given_
 bool BoomerAmgPreconditioner::setup(const SparseMatrix& A) {
   ready_ = false;
   error_.clear();
-  if (const std::string problem = check(A); !problem.empty()) {
-    error_ = name_ + ": " + problem;
-    return false;
-  }
+  if (const std::string problem = check(A); !problem.empty()) return fail(name_ + ": " + problem);
   rows_ = A.rows();
   if (rows_ == 0) return ready_ = true;
   Eigen::MatrixXd modes;
@@ -184,8 +181,7 @@ bool BoomerAmgPreconditioner::setup(const SparseMatrix& A) {
     x_.conform(A_.parcsr());
     amg_.setup(A_.parcsr(), b_.par(), x_.par(), &modes);
   } catch (const std::exception& e) {
-    error_ = name_ + ": " + e.what();
-    return false;
+    return fail(name_ + ": " + e.what());
   }
   return ready_ = true;
 }

@@ -35,21 +35,15 @@ bool PMultigridPreconditioner::setup(const SparseMatrix& A, const BlockSparseMat
 }
 
 bool PMultigridPreconditioner::check(const SparseMatrix& A) {
-  if (!mesh_view_.valid()) {
-    error_ = "pmg: needs the mesh and DOF map (set_mesh_view) before setup";
-    return false;
-  }
+  if (!mesh_view_.valid()) return fail("pmg: needs the mesh and DOF map (set_mesh_view) before setup");
   const Mesh& mesh = *mesh_view_.mesh;
-  if (mesh.order < 2) {
-    error_ = fmt::format(
-        "pmg needs element order >= 2 (the mesh is order {}, there is no coarser p level; use amg or ic0)", mesh.order);
-    return false;
-  }
-  if (A.rows() != mesh_view_.dofs->num_free() || A.cols() != A.rows() || !A.isCompressed()) {
-    error_ = fmt::format("pmg: matrix is {}x{} (compressed: {}), the DOF map has {} free DOFs", A.rows(), A.cols(),
-                         A.isCompressed(), mesh_view_.dofs->num_free());
-    return false;
-  }
+  if (mesh.order < 2)
+    return fail(fmt::format(
+        "pmg needs element order >= 2 (the mesh is order {}, there is no coarser p level; use amg or ic0)",
+        mesh.order));
+  if (A.rows() != mesh_view_.dofs->num_free() || A.cols() != A.rows() || !A.isCompressed())
+    return fail(fmt::format("pmg: matrix is {}x{} (compressed: {}), the DOF map has {} free DOFs", A.rows(), A.cols(),
+                            A.isCompressed(), mesh_view_.dofs->num_free()));
   return true;
 }
 
@@ -70,8 +64,7 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseM
     try {
       hierarchy_ = std::make_unique<PHierarchy>(mesh, dofs, orders);
     } catch (const std::invalid_argument& e) {
-      error_ = std::string("pmg: ") + e.what();
-      return false;
+      return fail(std::string("pmg: ") + e.what());
     }
     dofs_identity_ = dofs.identity();
     mesh_shape_ = shape;
@@ -109,16 +102,11 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseM
   const SparseMatrix Ac = coarse_.to_sparse();
   if (direct_coarse_) {
     if (!coarse_direct_) coarse_direct_ = std::make_unique<CholmodSolver>(/*serial_solves=*/true);
-    if (!coarse_direct_->factorize(Ac)) {  // CHOLMOD re-analyses by itself on a new pattern
-      error_ = "pmg: the order-1 operator P^T A P is not positive definite (A is not SPD)";
-      return false;
-    }
+    if (!coarse_direct_->factorize(Ac))  // CHOLMOD re-analyses by itself on a new pattern
+      return fail("pmg: the order-1 operator P^T A P is not positive definite (A is not SPD)");
   } else {
     if (!coarse_amg_) coarse_amg_ = make_preconditioner(options_.coarse_amg);
-    if (!coarse_amg_->setup(Ac)) {
-      error_ = "pmg: order-1 level: " + coarse_amg_->last_error();
-      return false;
-    }
+    if (!coarse_amg_->setup(Ac)) return fail("pmg: order-1 level: " + coarse_amg_->last_error());
   }
   return true;
 }
@@ -136,11 +124,9 @@ bool PMultigridPreconditioner::set_level_values(Level& level, std::size_t index)
     if (llt.info() != Eigen::Success) failed = std::min(failed, b);
     else level.inverse_diagonal[b] = llt.solve(Eigen::Matrix3d::Identity());
   }
-  if (failed < nb) {
-    error_ = fmt::format("pmg: level {} (order {}): diagonal block of node {} is not positive definite", index,
-                         hierarchy_->level(static_cast<int>(index)).order, failed);
-    return false;
-  }
+  if (failed < nb)
+    return fail(fmt::format("pmg: level {} (order {}): diagonal block of node {} is not positive definite", index,
+                            hierarchy_->level(static_cast<int>(index)).order, failed));
   const Eigen::Index n = level.smooth.rows();
   level.res.setZero(n);
   level.d.setZero(n);

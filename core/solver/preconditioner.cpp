@@ -30,10 +30,8 @@ class JacobiPreconditioner final : public Preconditioner {
   bool setup(const SparseMatrix& A) override {
     inv_diag_ = A.diagonal();
     for (Eigen::Index i = 0; i < inv_diag_.size(); ++i) {
-      if (!(inv_diag_[i] > 0.0)) {
-        error_ = fmt::format("jacobi: diagonal entry {} is {} (needs > 0)", i, inv_diag_[i]);
-        return false;
-      }
+      if (!(inv_diag_[i] > 0.0))
+        return fail(fmt::format("jacobi: diagonal entry {} is {} (needs > 0)", i, inv_diag_[i]));
       inv_diag_[i] = 1.0 / inv_diag_[i];
     }
     return true;
@@ -61,10 +59,8 @@ class BlockJacobiPreconditioner final : public Preconditioner {
         if (it.row() / 3 == c / 3) blocks_[c / 3](it.row() % 3, c % 3) = it.value();
     for (Eigen::Index b = 0; b < nb; ++b) {
       Eigen::LLT<Eigen::Matrix3d> llt(blocks_[b]);
-      if (llt.info() != Eigen::Success) {
-        error_ = fmt::format("block-jacobi: diagonal block {} is not positive definite", b);
-        return false;
-      }
+      if (llt.info() != Eigen::Success)
+        return fail(fmt::format("block-jacobi: diagonal block {} is not positive definite", b));
       blocks_[b] = llt.solve(Eigen::Matrix3d::Identity());
     }
     tail_.resize(n - 3 * nb);
@@ -89,11 +85,7 @@ class IncompleteCholesky0Preconditioner final : public Preconditioner {
  public:
   std::string_view name() const override { return "ic0"; }
   bool setup(const SparseMatrix& A) override {
-    if (!ic_.compute(A)) {
-      error_ = "ic0: a pivot stayed non-positive after 20 diagonal shifts";
-      return false;
-    }
-    return true;
+    return ic_.compute(A) || fail("ic0: a pivot stayed non-positive after 20 diagonal shifts");
   }
   void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const override { ic_.solve(r, z); }
 
@@ -112,11 +104,7 @@ class EigenIncompleteCholeskyPreconditioner final : public Preconditioner {
   std::string_view name() const override { return "eigen-ict"; }
   bool setup(const SparseMatrix& A) override {
     ic_.compute(A);
-    if (ic_.info() != Eigen::Success) {
-      error_ = "eigen-ict: factorisation failed";
-      return false;
-    }
-    return true;
+    return ic_.info() == Eigen::Success || fail("eigen-ict: factorisation failed");
   }
   void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const override { z = ic_.solve(r); }
 

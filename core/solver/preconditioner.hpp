@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace hofem {
@@ -36,6 +37,12 @@ class Preconditioner {
   const std::string& last_error() const { return error_; }
 
  protected:
+  /// Records why setup() cannot build M and returns false: `return fail(why);`.
+  bool fail(std::string why) {
+    error_ = std::move(why);
+    return false;
+  }
+
   std::string error_;
   MeshView mesh_view_;
 };
