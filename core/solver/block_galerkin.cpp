@@ -5,7 +5,7 @@
 
 namespace hofem {
 
-BlockSparseMatrix<double> BlockGalerkin::analyze(const BlockSparseMatrix<double>& A, const NodeTransfer& t) {
+BlockSparseMatrix<double> galerkin_structure(const BlockSparseMatrix<double>& A, const NodeTransfer& t) {
   if (A.block_rows() != t.P.rows()) throw std::invalid_argument("BlockGalerkin: matrix and transfer sizes differ");
   const Eigen::Index nc = t.P.cols();
   const RowSparseMatrix& P = t.P;
@@ -34,8 +34,7 @@ BlockSparseMatrix<double> BlockGalerkin::analyze(const BlockSparseMatrix<double>
   return BlockSparseMatrix<double>(std::move(start), std::move(column));
 }
 
-void BlockGalerkin::compute(const BlockSparseMatrix<double>& A, const NodeTransfer& t,
-                            BlockSparseMatrix<double>& Ac) const {
+void galerkin_values(const BlockSparseMatrix<double>& A, const NodeTransfer& t, BlockSparseMatrix<double>& Ac) {
   const Eigen::Index nc = t.P.cols();
   if (Ac.block_rows() != nc || A.block_rows() != t.P.rows())
     throw std::invalid_argument("BlockGalerkin::compute: sizes do not match the analysed product");

@@ -9,19 +9,17 @@
 // elasticity with exact quadrature, the matrix assembly on the coarse order would
 // give), for any matrix (a Newton Hessian included) without re-assembling.
 //
-// analyze() finds A_c's block pattern once per fine pattern; compute() writes the
-// values, coarse block rows in parallel, each thread with its own position map.
+// galerkin_structure() finds A_c's block pattern once per fine pattern;
+// galerkin_values() writes the values, coarse block rows in parallel, each thread
+// with its own position map.
 #include "solver/block_sparse_matrix.hpp"
 #include "solver/p_hierarchy.hpp"
 
 namespace hofem {
 
-class BlockGalerkin {
- public:
-  /// A_c's block structure from A's and the transfer's; returns A_c with zero values.
-  BlockSparseMatrix<double> analyze(const BlockSparseMatrix<double>& A, const NodeTransfer& t);
-  /// Values of A_c (which must come from analyze() with this A's pattern and t).
-  void compute(const BlockSparseMatrix<double>& A, const NodeTransfer& t, BlockSparseMatrix<double>& Ac) const;
-};
+/// A_c's block structure from A's and the transfer's; returns A_c with zero values.
+BlockSparseMatrix<double> galerkin_structure(const BlockSparseMatrix<double>& A, const NodeTransfer& t);
+/// Values of A_c (which must come from galerkin_structure() with this A's pattern and t).
+void galerkin_values(const BlockSparseMatrix<double>& A, const NodeTransfer& t, BlockSparseMatrix<double>& Ac);
 
 }  // namespace hofem

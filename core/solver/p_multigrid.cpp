@@ -71,7 +71,6 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseM
     pattern_hash_ = 0;
     levels_.clear();
     levels_.resize(static_cast<size_t>(hierarchy_->num_levels() - 1));
-    galerkin_.assign(levels_.size(), BlockGalerkin{});
   }
   // The fine level's operator: the caller's block copy, or a copy of our own.
   fine_blocks_ = blocks;
@@ -79,21 +78,17 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseM
   const std::uint64_t hash = blocks && blocks->source_fingerprint() != 0 ? blocks->source_fingerprint() : pattern_fingerprint(A);
   if (hash != pattern_hash_) {
     levels_[0].exact = blocks ? BlockSparseMatrix<double>() : BlockSparseMatrix<double>(A);
-    for (size_t l = 0; l < levels_.size(); ++l) {
-      BlockSparseMatrix<double> next = galerkin_[l].analyze(level_operator(l), hierarchy_->transfer(static_cast<int>(l)));
-      (l + 1 < levels_.size() ? levels_[l + 1].exact : coarse_) = std::move(next);
-    }
+    for (size_t l = 0; l < levels_.size(); ++l)
+      coarser_operator(l) = galerkin_structure(level_operator(l), hierarchy_->transfer(static_cast<int>(l)));
     pattern_hash_ = hash;
   } else if (!blocks) {
     if (levels_[0].exact.rows() != A.rows()) levels_[0].exact = BlockSparseMatrix<double>(A);  // had the caller's
     else levels_[0].exact.set_values(A);
   }
   for (size_t l = 0; l < levels_.size(); ++l) {
-    if (l > 0) galerkin_[l - 1].compute(level_operator(l - 1), hierarchy_->transfer(static_cast<int>(l) - 1), levels_[l].exact);
     if (!set_level_values(levels_[l], l)) return false;
+    galerkin_values(level_operator(l), hierarchy_->transfer(static_cast<int>(l)), coarser_operator(l));
   }
-  galerkin_.back().compute(level_operator(levels_.size() - 1), hierarchy_->transfer(static_cast<int>(levels_.size()) - 1),
-                           coarse_);
 
   // The order-1 level: factorised when small, one AMG V-cycle when large.
   coarse_x_.setZero(coarse_.rows());

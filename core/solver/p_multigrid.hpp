@@ -101,6 +101,10 @@ class PMultigridPreconditioner final : public Preconditioner {
   const BlockSparseMatrix<double>& level_operator(std::size_t l) const {
     return l == 0 && fine_blocks_ ? *fine_blocks_ : levels_[l].exact;
   }
+  /// The operator of the level below l: level l + 1's, or the order-1 level's.
+  BlockSparseMatrix<double>& coarser_operator(std::size_t l) {
+    return l + 1 < levels_.size() ? levels_[l + 1].exact : coarse_;
+  }
   void estimate_lambda_max(Level& level) const;
   void chebyshev(const Level& level, Eigen::VectorXd& z, bool final_residual) const;
   void vcycle(std::size_t l, const Eigen::VectorXd& b, Eigen::VectorXd& x) const;
@@ -114,7 +118,6 @@ class PMultigridPreconditioner final : public Preconditioner {
   std::uint64_t pattern_hash_ = 0;
   const BlockSparseMatrix<double>* fine_blocks_ = nullptr;  ///< setup(A, blocks)'s blocks
   std::unique_ptr<PHierarchy> hierarchy_;
-  std::vector<BlockGalerkin> galerkin_;
   std::vector<Level> levels_;  ///< all but the order-1 level
   // The order-1 level.
   BlockSparseMatrix<double> coarse_;
