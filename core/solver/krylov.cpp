@@ -16,7 +16,10 @@ Eigen::VectorXd apply(const LinearOperator& A, const Eigen::VectorXd& x) {
   return y;
 }
 
-double safe_norm(const Eigen::VectorXd& b) {
+// Every method starts the same way: x sized like b (zero if it was not), and
+// ||b|| to divide residuals by (1 for b = 0: the residual itself).
+double start(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (x.size() != b.size()) x.setZero(b.size());
   const double n = b.norm();
   return n > 0.0 ? n : 1.0;
 }
@@ -55,8 +58,7 @@ bool confirm_or_replace(const LinearOperator& A, const Eigen::VectorXd& b, const
 KrylovResult conjugate_gradient(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                 const Preconditioner& M, const KrylovOptions& opt) {
   KrylovResult res;
-  if (x.size() != b.size()) x.setZero(b.size());
-  const double bn = safe_norm(b);
+  const double bn = start(b, x);
   Eigen::VectorXd r = b - apply(A, x), z, Ap;
   M.apply(r, z);
   Eigen::VectorXd p = z;
@@ -97,8 +99,7 @@ KrylovResult conjugate_gradient(const LinearOperator& A, const Eigen::VectorXd& 
 KrylovResult conjugate_residual(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                                 const Preconditioner& M, const KrylovOptions& opt) {
   KrylovResult res;
-  if (x.size() != b.size()) x.setZero(b.size());
-  const double bn = safe_norm(b);
+  const double bn = start(b, x);
   Eigen::VectorXd r = b - apply(A, x), z, q;
   M.apply(r, z);  // z = M^-1 r
   Eigen::VectorXd Az = apply(A, z), p = z, Ap = Az;
@@ -145,8 +146,7 @@ KrylovResult minres(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::Ve
                     const KrylovOptions& opt) {
   KrylovResult res;
   const Eigen::Index n = b.size();
-  if (x.size() != n) x.setZero(n);
-  const double bn = safe_norm(b);
+  const double bn = start(b, x);
   Eigen::VectorXd r1 = b - apply(A, x), y, r2, v, w = Eigen::VectorXd::Zero(n), w1 = w, w2 = w;
   M.apply(r1, y);
   double beta1 = r1.dot(y);
@@ -215,8 +215,7 @@ KrylovResult gmres(const LinearOperator& A, const Eigen::VectorXd& b, Eigen::Vec
                    const KrylovOptions& opt) {
   KrylovResult res;
   const Eigen::Index n = b.size();
-  if (x.size() != n) x.setZero(n);
-  const double bn = safe_norm(b);
+  const double bn = start(b, x);
   const int m = std::max(1, opt.restart);
   Eigen::MatrixXd V(n, m + 1), H = Eigen::MatrixXd::Zero(m + 1, m);
   Eigen::VectorXd cs(m), sn(m), g(m + 1), z, w;
