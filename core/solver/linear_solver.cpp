@@ -7,7 +7,6 @@
 
 #include <Eigen/SparseCholesky>
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <stdexcept>
 
@@ -38,10 +37,6 @@ class EigenLdltSolver final : public LinearSolver {
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Upper> ldlt_;
   std::uint64_t pattern_ = 0;  // pattern_fingerprint of the analysed matrix
 };
-
-}  // namespace
-
-namespace {
 
 std::unique_ptr<LinearSolver> make_unbudgeted(const SolverSpec& spec) {
   if (!spec.method) throw std::logic_error("make_linear_solver: resolve \"auto\" first (resolve_linear_solver)");

@@ -9,8 +9,8 @@
 #include <Eigen/Dense>
 #include <Eigen/IterativeLinearSolvers>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
-#include <cmath>
 #include <stdexcept>
 
 namespace hofem {
@@ -126,9 +126,8 @@ std::unique_ptr<Preconditioner> make_preconditioner(std::string_view name) {
   if (name == "schwarz") return make_additive_schwarz_preconditioner();
   for (const std::string& v : boomeramg_variant_names())
     if (name == v) return make_boomeramg_preconditioner(name);
-  std::string valid;
-  for (const std::string& n : preconditioner_names()) valid += (valid.empty() ? "" : ", ") + n;
-  throw std::invalid_argument(fmt::format("unknown preconditioner '{}' (valid: {})", name, valid));
+  throw std::invalid_argument(
+      fmt::format("unknown preconditioner '{}' (valid: {})", name, fmt::join(preconditioner_names(), ", ")));
 }
 
 }  // namespace hofem

@@ -15,8 +15,7 @@ std::vector<std::string> boomeramg_variant_names() { return {"amg", "amg-nodal",
 std::vector<std::string> preconditioner_names() {
   std::vector<std::string> names{"none", "jacobi", "block-jacobi", "ic0", "eigen-ict"};
   for (const std::string& v : boomeramg_variant_names()) names.push_back(v);
-  names.push_back("pmg");
-  names.push_back("schwarz");
+  names.insert(names.end(), {"pmg", "schwarz"});
   return names;
 }
 
