@@ -129,9 +129,6 @@ struct BlockInverter {
 
 }  // namespace
 
-AdditiveSchwarzPreconditioner::AdditiveSchwarzPreconditioner(AdditiveSchwarzOptions options)
-    : options_(std::move(options)) {}
-
 void AdditiveSchwarzPreconditioner::set_mesh_view(const MeshView& d) {
   mesh_view_ = d;
   blocks_built_ = ready_ = false;
@@ -317,10 +314,6 @@ void AdditiveSchwarzPreconditioner::apply(const Eigen::VectorXd& r, Eigen::Vecto
       z[i] = zi;
     }
   }
-}
-
-std::unique_ptr<Preconditioner> make_additive_schwarz_preconditioner() {
-  return std::make_unique<AdditiveSchwarzPreconditioner>();
 }
 
 }  // namespace hofem

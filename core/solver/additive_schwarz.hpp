@@ -31,7 +31,6 @@
 #include <Eigen/Core>
 
 #include <cstdint>
-#include <memory>
 #include <span>
 #include <vector>
 
@@ -51,7 +50,7 @@ struct AdditiveSchwarzOptions {
 
 class AdditiveSchwarzPreconditioner final : public Preconditioner {
  public:
-  explicit AdditiveSchwarzPreconditioner(AdditiveSchwarzOptions options = {});
+  explicit AdditiveSchwarzPreconditioner(AdditiveSchwarzOptions options = {}) : options_(std::move(options)) {}
 
   std::string_view name() const override { return "schwarz"; }
   void set_mesh_view(const MeshView& d) override;
@@ -107,8 +106,5 @@ class AdditiveSchwarzPreconditioner final : public Preconditioner {
   // apply() workspace, one entry per slot: R_K r and S_K R_K r of every block.
   mutable Eigen::VectorXd gathered_, product_;
 };
-
-/// The "schwarz" preconditioner of make_preconditioner(): blocks for ALL elements.
-std::unique_ptr<Preconditioner> make_additive_schwarz_preconditioner();
 
 }  // namespace hofem

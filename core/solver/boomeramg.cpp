@@ -213,8 +213,4 @@ std::string BoomerAmgPreconditioner::check(const SparseMatrix& A) const {
   return {};
 }
 
-std::unique_ptr<Preconditioner> make_boomeramg_preconditioner(std::string_view variant) {
-  return std::make_unique<BoomerAmgPreconditioner>(std::string(variant), boomeramg_options(variant));
-}
-
 }  // namespace hofem

@@ -5,7 +5,7 @@
 //   - BoomerAmg works on hypre objects only (a ParCSR matrix, ParVectors), so the
 //     MPI-distributed assembly can hand in its own ParCSR matrix; hypre's
 //     PCG (solver/hypre_pcg.hpp) uses it as its preconditioner too.
-//   - make_boomeramg_preconditioner() wraps it as a Preconditioner on our serial
+//   - BoomerAmgPreconditioner wraps it as a Preconditioner on our serial
 //     SparseMatrix (converted by solver/hypre_matrix.hpp).
 // Parameter meanings: hypre 2.26, HYPRE_parcsr_ls.h (the BoomerAMG reference);
 // the measurements behind the defaults are in boomeramg.cpp.
@@ -22,8 +22,6 @@
 #include <vector>
 
 namespace hofem {
-
-std::unique_ptr<Preconditioner> make_boomeramg_preconditioner(std::string_view variant);
 
 /// BoomerAMG parameters, each passed to the matching HYPRE_BoomerAMGSet* call
 /// (relax_*: SetCycleRelaxType); values as documented in HYPRE_parcsr_ls.h.

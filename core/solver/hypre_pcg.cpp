@@ -129,6 +129,4 @@ void HyprePcgSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
                                          last_.iterations, last_.relative_residual, hypre_note));
 }
 
-std::unique_ptr<LinearSolver> make_hypre_pcg_solver() { return std::make_unique<HyprePcgSolver>("amg"); }
-
 }  // namespace hofem

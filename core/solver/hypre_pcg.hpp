@@ -45,6 +45,4 @@ class HyprePcgSolver final : public LinearSolver {
   std::string error_;
 };
 
-std::unique_ptr<LinearSolver> make_hypre_pcg_solver();
-
 }  // namespace hofem

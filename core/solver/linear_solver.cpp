@@ -44,7 +44,7 @@ std::unique_ptr<LinearSolver> make_unbudgeted(const SolverSpec& spec) {
     case SolverMethod::Cholmod: return std::make_unique<CholmodSolver>();
     case SolverMethod::EigenLdlt: return std::make_unique<EigenLdltSolver>();
     case SolverMethod::Umfpack: return std::make_unique<UmfpackSolver>();
-    case SolverMethod::HyprePcg: return make_hypre_pcg_solver();
+    case SolverMethod::HyprePcg: return std::make_unique<HyprePcgSolver>();
     case SolverMethod::Cg:
     case SolverMethod::Cr:
     case SolverMethod::Minres:

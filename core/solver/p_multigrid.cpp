@@ -273,8 +273,4 @@ double PMultigridPreconditioner::bytes_per_apply() const {
   return bytes;
 }
 
-std::unique_ptr<Preconditioner> make_p_multigrid_preconditioner() {
-  return std::make_unique<PMultigridPreconditioner>();
-}
-
 }  // namespace hofem

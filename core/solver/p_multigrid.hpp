@@ -127,7 +127,4 @@ class PMultigridPreconditioner final : public Preconditioner {
   mutable Eigen::VectorXd coarse_x_;
 };
 
-/// "pmg" with the default options.
-std::unique_ptr<Preconditioner> make_p_multigrid_preconditioner();
-
 }  // namespace hofem

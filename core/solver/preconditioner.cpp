@@ -122,10 +122,10 @@ std::unique_ptr<Preconditioner> make_preconditioner(std::string_view name) {
   if (name == "block-jacobi") return std::make_unique<BlockJacobiPreconditioner>();
   if (name == "ic0") return std::make_unique<IncompleteCholesky0Preconditioner>();
   if (name == "eigen-ict") return std::make_unique<EigenIncompleteCholeskyPreconditioner>();
-  if (name == "pmg") return make_p_multigrid_preconditioner();
-  if (name == "schwarz") return make_additive_schwarz_preconditioner();
+  if (name == "pmg") return std::make_unique<PMultigridPreconditioner>();
+  if (name == "schwarz") return std::make_unique<AdditiveSchwarzPreconditioner>();
   for (const std::string& v : boomeramg_variant_names())
-    if (name == v) return make_boomeramg_preconditioner(name);
+    if (name == v) return std::make_unique<BoomerAmgPreconditioner>(v, boomeramg_options(v));
   throw std::invalid_argument(
       fmt::format("unknown preconditioner '{}' (valid: {})", name, fmt::join(preconditioner_names(), ", ")));
 }
