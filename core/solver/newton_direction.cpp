@@ -99,24 +99,17 @@ std::string solve_direction(NonlinearProblem& problem, const Eigen::VectorXd& u,
   // An iterative solver can fail where a factorisation would not (CG meeting
   // negative curvature on an indefinite Hessian): retry once on the projected
   // Hessian, which is positive semi-definite by construction.
-  std::string solve_error;
-  try {
-    solver.solve(-g, d);
-  } catch (const std::runtime_error& e) {
-    solve_error = e.what();
-  }
-  if (!solve_error.empty() && !state.project) {
+  for (bool retry = false;; retry = true) {
+    try {
+      if (retry && !solver.factorize(K)) throw std::runtime_error("projected Hessian rejected by the solver");
+      solver.solve(-g, d);
+      return {};
+    } catch (const std::runtime_error& e) {
+      if (retry || state.project) return e.what();
+    }
     state.project = true;
     problem.hessian(u, g, K, true);
-    solve_error.clear();
-    try {
-      if (!solver.factorize(K)) throw std::runtime_error("projected Hessian rejected by the solver");
-      solver.solve(-g, d);
-    } catch (const std::runtime_error& e) {
-      solve_error = e.what();
-    }
   }
-  return solve_error;
 }
 
 void ensure_descent(NonlinearProblem& problem, const Eigen::VectorXd& u, Eigen::VectorXd& g, SparseMatrix& K,
