@@ -29,9 +29,7 @@ cholmod_sparse CholmodSolver::view(const SparseMatrix& A) const {
   s.nzmax = static_cast<size_t>(A.nonZeros());
   s.p = const_cast<std::int64_t*>(A.outerIndexPtr());
   s.i = const_cast<std::int64_t*>(A.innerIndexPtr());
-  s.nz = nullptr;
   s.x = const_cast<double*>(A.valuePtr());
-  s.z = nullptr;
   s.stype = 1;  // symmetric, stored in full: CHOLMOD reads the upper triangle
   s.itype = CHOLMOD_LONG;
   s.xtype = CHOLMOD_REAL;
