@@ -68,6 +68,9 @@ class BoomerAmg {
   void apply(HYPRE_ParCSRMatrix A, HYPRE_ParVector b, HYPRE_ParVector x) const;
   /// The set-up hypre solver (for HYPRE_ParCSRPCGSetPrecond), or nullptr.
   HYPRE_Solver handle() const { return solver_; }
+  /// The set-up function to pass with handle(): setup() built the hierarchy
+  /// already, so the Krylov solver's set-up, which calls this, has nothing left to do.
+  static HYPRE_Int already_set_up(HYPRE_Solver, HYPRE_ParCSRMatrix, HYPRE_ParVector, HYPRE_ParVector) { return 0; }
   const BoomerAmgOptions& options() const { return options_; }
   /// Frees the hierarchy. It refers to the matrix and vectors of the last
   /// set-up: call this before they go.

@@ -22,9 +22,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// BoomerAMG is set up before the Krylov solver's set-up, which then calls this in its place.
-HYPRE_Int already_set_up(HYPRE_Solver, HYPRE_ParCSRMatrix, HYPRE_ParVector, HYPRE_ParVector) { return 0; }
-
 }  // namespace
 
 struct DistributedLinearSystem::Hypre {
@@ -131,7 +128,7 @@ double DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
     hypre_check(HYPRE_ParCSRGMRESSetKDim(h.krylov, options_.gmres_restart), "HYPRE_ParCSRGMRESSetKDim");
     hypre_check(HYPRE_ParCSRGMRESSetAbsoluteTol(h.krylov, 0.0), "HYPRE_ParCSRGMRESSetAbsoluteTol");
     hypre_check(HYPRE_ParCSRGMRESSetPrintLevel(h.krylov, 0), "HYPRE_ParCSRGMRESSetPrintLevel");
-    hypre_check(HYPRE_ParCSRGMRESSetPrecond(h.krylov, HYPRE_BoomerAMGSolve, already_set_up, h.amg->handle()),
+    hypre_check(HYPRE_ParCSRGMRESSetPrecond(h.krylov, HYPRE_BoomerAMGSolve, BoomerAmg::already_set_up, h.amg->handle()),
                 "HYPRE_ParCSRGMRESSetPrecond");
     hypre_check(HYPRE_ParCSRGMRESSetup(h.krylov, h.parcsr, h.b.par(), h.x.par()), "HYPRE_ParCSRGMRESSetup");
   } else {
@@ -139,7 +136,7 @@ double DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
     hypre_check(HYPRE_ParCSRPCGSetTwoNorm(h.krylov, 1), "HYPRE_ParCSRPCGSetTwoNorm");  // ||r||_2 <= rtol ||b||_2
     hypre_check(HYPRE_ParCSRPCGSetAbsoluteTol(h.krylov, 0.0), "HYPRE_ParCSRPCGSetAbsoluteTol");
     hypre_check(HYPRE_ParCSRPCGSetPrintLevel(h.krylov, 0), "HYPRE_ParCSRPCGSetPrintLevel");
-    hypre_check(HYPRE_ParCSRPCGSetPrecond(h.krylov, HYPRE_BoomerAMGSolve, already_set_up, h.amg->handle()),
+    hypre_check(HYPRE_ParCSRPCGSetPrecond(h.krylov, HYPRE_BoomerAMGSolve, BoomerAmg::already_set_up, h.amg->handle()),
                 "HYPRE_ParCSRPCGSetPrecond");
     hypre_check(HYPRE_ParCSRPCGSetup(h.krylov, h.parcsr, h.b.par(), h.x.par()), "HYPRE_ParCSRPCGSetup");
   }

@@ -14,10 +14,6 @@ namespace hofem {
 
 namespace {
 
-// BoomerAmgPreconditioner sets the hierarchy up before PCG's set-up, which then
-// calls this in its place: nothing left to do.
-HYPRE_Int amg_already_set_up(HYPRE_Solver, HYPRE_ParCSRMatrix, HYPRE_ParVector, HYPRE_ParVector) { return 0; }
-
 // hypre's PCG stops on its recursively updated residual, which drifts from
 // b - A x by rounding (~eps ||A|| ||x|| per iteration); when the true residual
 // misses the target, PCG is re-run from its last iterate (a restart) at most this
@@ -73,7 +69,7 @@ bool HyprePcgSolver::factorize(const SparseMatrix& A) {
     hypre_check(HYPRE_ParCSRPCGSetTwoNorm(s.pcg, 1), "HYPRE_ParCSRPCGSetTwoNorm");
     hypre_check(HYPRE_ParCSRPCGSetAbsoluteTol(s.pcg, 0.0), "HYPRE_ParCSRPCGSetAbsoluteTol");
     hypre_check(HYPRE_ParCSRPCGSetPrintLevel(s.pcg, 0), "HYPRE_ParCSRPCGSetPrintLevel");
-    hypre_check(HYPRE_ParCSRPCGSetPrecond(s.pcg, HYPRE_BoomerAMGSolve, amg_already_set_up, s.M.amg().handle()),
+    hypre_check(HYPRE_ParCSRPCGSetPrecond(s.pcg, HYPRE_BoomerAMGSolve, BoomerAmg::already_set_up, s.M.amg().handle()),
                 "HYPRE_ParCSRPCGSetPrecond");
     hypre_check(HYPRE_ParCSRPCGSetup(s.pcg, s.A(), s.b.par(), s.x.par()), "HYPRE_ParCSRPCGSetup");
   } catch (const std::exception& e) {
