@@ -292,10 +292,9 @@ bool KrylovSolver::factorize(const SparseMatrix& A) {
   use_block_ = A.rows() % 3 == 0 && A.rows() == A.cols() && A.isCompressed();
   if (use_block_) {
     const std::uint64_t pattern = pattern_fingerprint(A);
-    if (pattern != block_pattern_ || block_.rows() != A.rows()) {
+    if (pattern != block_.source_fingerprint() || block_.rows() != A.rows()) {
       block_ = BlockSparseMatrix<double>(A);
       block_.set_source_fingerprint(pattern);
-      block_pattern_ = pattern;
     } else {
       block_.set_values(A);
     }

@@ -83,7 +83,6 @@ class KrylovSolver final : public LinearSolver {
   /// A's 3x3 block copy, the operator of the iterations when A's size is a
   /// multiple of 3 (structure rebuilt only when A's pattern changes).
   BlockSparseMatrix<double> block_;
-  std::uint64_t block_pattern_ = 0;
   bool use_block_ = false;
   int fixed_iterations_ = 0;  ///< > 0: set_fixed_iterations
   KrylovResult last_;

@@ -52,8 +52,7 @@ class BlockJacobiPreconditioner final : public Preconditioner {
   std::string_view name() const override { return "block-jacobi"; }
   bool setup(const SparseMatrix& A) override {
     const Eigen::Index n = A.rows(), nb = n / 3;
-    blocks_.resize(nb);
-    for (Eigen::Index b = 0; b < nb; ++b) blocks_[b].setZero();
+    blocks_.assign(nb, Eigen::Matrix3d::Zero());
     for (Eigen::Index c = 0; c < 3 * nb; ++c)
       for (SparseMatrix::InnerIterator it(A, c); it; ++it)
         if (it.row() / 3 == c / 3) blocks_[c / 3](it.row() % 3, c % 3) = it.value();
