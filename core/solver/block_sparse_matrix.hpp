@@ -98,12 +98,8 @@ template <class U>
 BlockSparseMatrix<T>::BlockSparseMatrix(const BlockSparseMatrix<U>& other)
     : row_start_(other.row_start_), column_(other.column_), diagonal_(other.diagonal_),
       source_nonzeros_(other.source_nonzeros_), parallel_(other.parallel_) {
-  value_.resize(other.value_.size());  // uninitialised: converted on every thread
-  const std::int64_t n = static_cast<std::int64_t>(value_.size());
-  T* out = value_.data();
-  const U* in = other.value_.data();
-#pragma omp parallel for schedule(static) if (parallel_)
-  for (std::int64_t k = 0; k < n; ++k) out[k] = static_cast<T>(in[k]);
+  value_.resize(other.value_.size());  // uninitialised: converted on every thread, by assign()
+  assign(other);
 }
 
 template <class T>
