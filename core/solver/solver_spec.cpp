@@ -67,8 +67,7 @@ std::string linear_solver_choices() {
 SolverSpec SolverSpec::parse(std::string_view name) {
   SolverSpec spec;
   if (name == "auto") return spec;
-  const std::vector<std::string> names = linear_solver_names();
-  if (std::find(names.begin(), names.end(), name) == names.end())
+  if (std::ranges::count(linear_solver_names(), name) == 0)
     throw std::invalid_argument(fmt::format("unknown linear solver '{}' (valid: {})", name, linear_solver_choices()));
   const size_t plus = name.find('+');
   const std::string_view method = name.substr(0, plus);
