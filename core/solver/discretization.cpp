@@ -64,7 +64,6 @@ std::unique_ptr<LinearSolver> Discretization::make_solver(const SolverSpec& reso
   auto hypre = std::make_unique<DistributedHypreSolver>(*rows_, resolved.distributed);
   hypre->system().set_coordinates(mesh(), dofs_);
   apply_iteration_budget(*hypre, resolved.fixed_iterations);
-  hypre->set_mesh_view({&mesh(), &dofs_, nullptr});
   return hypre;
 }
 
