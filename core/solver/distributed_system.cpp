@@ -70,7 +70,7 @@ void DistributedLinearSystem::set_coordinates(const Mesh& mesh, const DofMap& do
     if (rows_.free.owned(static_cast<int>(i))) modes_.row(rows_.row[i] - rows_.first_row) = local.row(i);
 }
 
-double DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
+void DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
   const auto t0 = Clock::now();
   const auto n = static_cast<Eigen::Index>(rows_.row.size());
   if (K_local.rows() != n || K_local.cols() != n)
@@ -142,7 +142,6 @@ double DistributedLinearSystem::assemble_matrix(const SparseMatrix& K_local) {
   }
   timings_.amg_seconds += since(t_amg);
   ++timings_.setups;
-  return since(t0);
 }
 
 long long DistributedLinearSystem::local_nonzeros() const {

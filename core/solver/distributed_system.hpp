@@ -28,7 +28,6 @@ struct DistributedSolveResult {
   bool converged = false;
   int iterations = 0;
   double relative_residual = 0.0;  ///< hypre's final ||r|| / ||b||
-  double setup_seconds = 0.0;      ///< IJ assembly (with its communication) and BoomerAMG set-up
   double solve_seconds = 0.0;      ///< Krylov iterations and the ghost update
   std::string message;
 };
@@ -48,8 +47,7 @@ class DistributedLinearSystem {
   void set_coordinates(const Mesh& local_mesh, const DofMap& dofs);
   /// Collective. Adds every rank's K_local (local free x local free) into the
   /// distributed matrix and sets BoomerAMG and the Krylov solver up for it.
-  /// Returns the set-up seconds.
-  double assemble_matrix(const SparseMatrix& K_local);
+  void assemble_matrix(const SparseMatrix& K_local);
   /// Collective. x = K^-1 b, b consistent over the local free DOFs (only owned
   /// rows are read); to ||r|| <= rtol ||b||; x: consistent.
   DistributedSolveResult solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double rtol = 1e-10,
