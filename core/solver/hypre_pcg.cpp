@@ -117,7 +117,6 @@ void HyprePcgSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     last_.relative_residual = std::sqrt(hypre_dot(s.r, s.r) / hypre_dot(s.b, s.b));
     last_.converged = last_.relative_residual <= rtol_;
     if (last_.converged || code != 0 || attempt == kMaxRestarts || last_.iterations >= max_iterations_) break;
-    ++last_.restarts;
   }
   s.x.get(x);
   if (!last_.converged)

@@ -14,7 +14,6 @@ namespace hofem {
 struct HyprePcgResult {
   bool converged = false;
   int iterations = 0;                 ///< summed over restarts
-  int restarts = 0;                   ///< re-runs from the last iterate because the true residual missed
   double relative_residual = 0.0;     ///< true ||b - A x|| / ||b||
 };
 

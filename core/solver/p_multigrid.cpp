@@ -91,7 +91,6 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseM
   }
 
   // The order-1 level: factorised when small, one AMG V-cycle when large.
-  coarse_x_.setZero(coarse_.rows());
   if (coarse_.rows() == 0) return true;  // every vertex constrained: smoothing only
   direct_coarse_ = coarse_.rows() <= options_.direct_coarse_limit;
   const SparseMatrix Ac = coarse_.to_sparse();

@@ -124,7 +124,6 @@ class PMultigridPreconditioner final : public Preconditioner {
   bool direct_coarse_ = true;
   std::unique_ptr<LinearSolver> coarse_direct_;
   std::unique_ptr<Preconditioner> coarse_amg_;
-  mutable Eigen::VectorXd coarse_x_;
 };
 
 }  // namespace hofem
