@@ -46,7 +46,6 @@ DistributedLinearSystem::DistributedLinearSystem(const DistributedDofs& rows, Di
     : rows_(rows), options_(std::move(options)), hypre_(std::make_unique<Hypre>()) {
   ensure_hypre();
   validate(options_);
-  MPI_Comm_rank(rows_.free.comm(), &rank_);
 }
 
 DistributedLinearSystem::~DistributedLinearSystem() = default;

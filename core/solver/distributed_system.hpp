@@ -76,7 +76,6 @@ class DistributedLinearSystem {
   struct Hypre;
   const DistributedDofs& rows_;
   DistributedSolverOptions options_;
-  int rank_ = 0;
   Eigen::MatrixXd modes_;  ///< owned rows x 3 rigid rotations (empty without)
   std::unique_ptr<Hypre> hypre_;
   Timings timings_;
