@@ -131,13 +131,9 @@ EmbeddedSurfaceRule embedded_surface_rule(const Mesh& background, const Mesh& su
       if (!active.empty() && !active[e]) moved.push_back(static_cast<int>(q));
     }
   if (!moved.empty()) {
-    Eigen::Matrix3Xd P(3, static_cast<Eigen::Index>(moved.size()));
-    for (size_t k = 0; k < moved.size(); ++k) P.col(static_cast<Eigen::Index>(k)) = rule.points.col(moved[k]);
-    const EmbeddedPointMap map = locate_embedded_points(background, P, active);
-    for (size_t k = 0; k < moved.size(); ++k) {
-      rule.element[moved[k]] = map.element[k];
-      rule.xi.col(moved[k]) = map.xi.col(static_cast<Eigen::Index>(k));
-    }
+    const EmbeddedPointMap map = locate_embedded_points(background, rule.points(Eigen::all, moved), active);
+    for (size_t k = 0; k < moved.size(); ++k) rule.element[moved[k]] = map.element[k];
+    rule.xi(Eigen::all, moved) = map.xi;
     rule.num_relocated = static_cast<int>(moved.size());
   }
   return rule;
