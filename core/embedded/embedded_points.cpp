@@ -287,23 +287,21 @@ Mesh boundary_surface(const Mesh& tets, std::vector<int>* vertex_of) {
   std::vector<std::array<int, 3>> tris;
   for (const auto& [key, value] : faces)
     if (value.first == 1) tris.push_back(value.second);
+  Mesh surface;
+  surface.cell = CellType::Triangle;
+  surface.order = 1;
+  surface.elements.resize(3, static_cast<Eigen::Index>(tris.size()));
   std::vector<int> new_id(tets.num_nodes(), -1), old_id;
-  for (auto& t : tris)
-    for (int& v : t) {
+  for (size_t t = 0; t < tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int v = tris[t][k];
       if (new_id[v] < 0) {
         new_id[v] = static_cast<int>(old_id.size());
         old_id.push_back(v);
       }
-      v = new_id[v];
+      surface.elements(k, static_cast<Eigen::Index>(t)) = new_id[v];
     }
-  Mesh surface;
-  surface.cell = CellType::Triangle;
-  surface.order = 1;
-  surface.nodes.resize(3, static_cast<Eigen::Index>(old_id.size()));
-  for (size_t i = 0; i < old_id.size(); ++i) surface.nodes.col(static_cast<Eigen::Index>(i)) = tets.nodes.col(old_id[i]);
-  surface.elements.resize(3, static_cast<Eigen::Index>(tris.size()));
-  for (size_t t = 0; t < tris.size(); ++t)
-    for (int k = 0; k < 3; ++k) surface.elements(k, static_cast<Eigen::Index>(t)) = tris[t][k];
+  surface.nodes = tets.nodes(Eigen::all, old_id);
   if (vertex_of) *vertex_of = std::move(old_id);
   return surface;
 }
