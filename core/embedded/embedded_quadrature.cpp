@@ -14,8 +14,7 @@ std::vector<Tetrahedron> mesh_tetrahedra(const Mesh& mesh) {
   if (mesh.cell != CellType::Tetrahedron)
     throw std::invalid_argument("mesh_tetrahedra: the embedded geometry must be a tetrahedral mesh");
   std::vector<Tetrahedron> tets(mesh.num_elements());
-  for (int e = 0; e < mesh.num_elements(); ++e)
-    for (int i = 0; i < 4; ++i) tets[e].v.col(i) = mesh.nodes.col(mesh.elements(i, e));
+  for (int e = 0; e < mesh.num_elements(); ++e) tets[e].v = mesh.nodes(Eigen::all, mesh.elements.col(e).head<4>());
   return tets;
 }
 
