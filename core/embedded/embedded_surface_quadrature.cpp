@@ -95,11 +95,10 @@ EmbeddedSurfaceRule embedded_surface_rule(const Mesh& background, const Mesh& su
   std::vector<CellPoints> per_cell(ne);
 #pragma omp parallel for schedule(dynamic, 16)
   for (int e = 0; e < ne; ++e) {
-    Eigen::AlignedBox3d cell_box;
-    for (int i = 0; i < background.vertices_per_element(); ++i)
-      cell_box.extend(Eigen::Vector3d(background.nodes.col(background.elements(i, e))));
+    const Eigen::Matrix3Xd vertices =
+        background.nodes(Eigen::all, background.elements.col(e).head(background.vertices_per_element()));
     const std::vector<HalfSpace> planes = cell_half_spaces(background.cell, maps[e]);
-    for (int t : grid.candidates(cell_box.min(), cell_box.max())) {
+    for (int t : grid.candidates(vertices.rowwise().minCoeff(), vertices.rowwise().maxCoeff())) {
       if (!(areas[t] > 0.0)) continue;
       ConvexPolygon piece = triangles[t];
       for (const HalfSpace& h : planes) {

@@ -128,12 +128,9 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
     const auto tc = Clock::now();
     const AffineCell& map = maps[e];
     const std::vector<HalfSpace> planes = cell_half_spaces(cell, map);
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-    for (int i = 0; i < background.vertices_per_element(); ++i) {
-      lo = lo.cwiseMin(background.nodes.col(background.elements(i, e)));
-      hi = hi.cwiseMax(background.nodes.col(background.elements(i, e)));
-    }
-    const std::vector<int> candidates = grid.candidates(lo, hi);
+    const Eigen::Matrix3Xd vertices =
+        background.nodes(Eigen::all, background.elements.col(e).head(background.vertices_per_element()));
+    const std::vector<int> candidates = grid.candidates(vertices.rowwise().minCoeff(), vertices.rowwise().maxCoeff());
     const double jac = std::abs(map.A.determinant());
     // Clipped rules of both strengths, in reference coordinates: w_ref = w / |det A| (eq. 11-12).
     auto clipped = [&](int degree) {
