@@ -1,6 +1,7 @@
 #include "embedded/embedded_points.hpp"
 
 #include "basis/reference_basis.hpp"
+#include "embedded/embedded_quadrature.hpp"
 #include "embedded/finite_cell_quadrature.hpp"
 
 #include <Eigen/LU>
@@ -81,80 +82,47 @@ class CellMaps {
   Eigen::MatrixXd dN_;
 };
 
-double box_distance(const Eigen::Vector3d& X, const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  return (lo - X).cwiseMax(X - hi).cwiseMax(0.0).norm();
+// The active cells' bounding boxes (all nodes: a curved cell bulges past its
+// vertices; curved cells' boxes get 5 % slack so boundary points of a curved face
+// stay inside) in uniform buckets, ~cbrt(active cells) per axis; an inactive
+// cell's box is left empty, so no bucket lists it.
+BoxBucketGrid cell_grid(const Mesh& mesh, const std::vector<AffineFit>& fits, const std::vector<char>& active) {
+  std::vector<Eigen::AlignedBox3d> boxes(mesh.num_elements());
+  int count = 0;
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    if (!active.empty() && !active[e]) continue;
+    for (int i = 0; i < mesh.nodes_per_element(); ++i)
+      boxes[e].extend(Eigen::Vector3d(mesh.nodes.col(mesh.elements(i, e))));
+    const double slack = fits[e].affine ? 1e-10 * fits[e].size : 0.05 * fits[e].size;
+    boxes[e].min().array() -= slack;
+    boxes[e].max().array() += slack;
+    ++count;
+  }
+  if (count == 0) throw std::invalid_argument("locate_embedded_points: no active background cell");
+  return BoxBucketGrid(std::move(boxes), std::max(1, static_cast<int>(std::cbrt(static_cast<double>(count)))));
 }
 
-// Uniform buckets over the active cells' bounding boxes (all nodes: a curved
-// cell bulges past its vertices; curved cells' boxes get 5 % slack so boundary
-// points of a curved face stay inside), each listing the cells that reach it.
-class CellGrid {
- public:
-  CellGrid(const Mesh& mesh, const std::vector<AffineFit>& fits, const std::vector<char>& active) {
-    const int ne = mesh.num_elements();
-    lo_ = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
-    Eigen::Vector3d hi = -lo_;
-    cell_lo_.resize(ne);
-    cell_hi_.resize(ne);
-    for (int e = 0; e < ne; ++e) {
-      cell_lo_[e] = cell_hi_[e] = mesh.nodes.col(mesh.elements(0, e));
-      for (int i = 1; i < mesh.nodes_per_element(); ++i) {
-        cell_lo_[e] = cell_lo_[e].cwiseMin(mesh.nodes.col(mesh.elements(i, e)));
-        cell_hi_[e] = cell_hi_[e].cwiseMax(mesh.nodes.col(mesh.elements(i, e)));
-      }
-      const double slack = fits[e].affine ? 1e-10 * fits[e].size : 0.05 * fits[e].size;
-      cell_lo_[e].array() -= slack;
-      cell_hi_[e].array() += slack;
-      if (active.empty() || active[e]) {
-        cells_.push_back(e);
-        lo_ = lo_.cwiseMin(cell_lo_[e]);
-        hi = hi.cwiseMax(cell_hi_[e]);
-      }
-    }
-    if (cells_.empty()) throw std::invalid_argument("locate_embedded_points: no active background cell");
-    n_ = std::max(1, static_cast<int>(std::cbrt(static_cast<double>(cells_.size()))));
-    size_ = ((hi - lo_) / n_).cwiseMax(1e-300);
-    buckets_.resize(static_cast<size_t>(n_) * n_ * n_);
-    for (int e : cells_) {
-      const Eigen::Vector3i a = bucket(cell_lo_[e]), b = bucket(cell_hi_[e]);
-      for (int i = a.x(); i <= b.x(); ++i)
-        for (int j = a.y(); j <= b.y(); ++j)
-          for (int k = a.z(); k <= b.z(); ++k) buckets_[index(i, j, k)].push_back(e);
-    }
-  }
-  int n() const { return n_; }
-  Eigen::Vector3i bucket(const Eigen::Vector3d& x) const {
-    return ((x - lo_).cwiseQuotient(size_)).array().floor().cast<int>().cwiseMax(0).cwiseMin(n_ - 1).matrix();
-  }
-  const std::vector<int>& at(const Eigen::Vector3i& b) const { return buckets_[index(b.x(), b.y(), b.z())]; }
-  bool in_box(int e, const Eigen::Vector3d& X) const {
-    return (X.array() >= cell_lo_[e].array()).all() && (X.array() <= cell_hi_[e].array()).all();
-  }
-  double box_distance_to(int e, const Eigen::Vector3d& X) const { return box_distance(X, cell_lo_[e], cell_hi_[e]); }
-  /// Appends the cells listed in the buckets at Chebyshev distance r from `home`.
-  void shell(const Eigen::Vector3i& home, int r, std::vector<int>& out) const {
-    for (int i = std::max(0, home.x() - r); i <= std::min(n_ - 1, home.x() + r); ++i)
-      for (int j = std::max(0, home.y() - r); j <= std::min(n_ - 1, home.y() + r); ++j)
-        for (int k = std::max(0, home.z() - r); k <= std::min(n_ - 1, home.z() + r); ++k)
-          if (std::max({std::abs(i - home.x()), std::abs(j - home.y()), std::abs(k - home.z())}) == r)
-            for (int e : buckets_[index(i, j, k)]) out.push_back(e);
-  }
+double box_distance(const Eigen::Vector3d& X, const Eigen::AlignedBox3d& box) {
+  return (box.min() - X).cwiseMax(X - box.max()).cwiseMax(0.0).norm();
+}
 
- private:
-  size_t index(int i, int j, int k) const { return (static_cast<size_t>(i) * n_ + j) * n_ + k; }
-  Eigen::Vector3d lo_, size_;
-  int n_ = 1;
-  std::vector<int> cells_;
-  std::vector<Eigen::Vector3d> cell_lo_, cell_hi_;
-  std::vector<std::vector<int>> buckets_;
-};
+// Appends the cells listed in the buckets at Chebyshev distance r from `home`.
+void shell(const BoxBucketGrid& grid, const Eigen::Vector3i& home, int r, std::vector<int>& out) {
+  const int n = grid.buckets_per_axis();
+  for (int i = std::max(0, home.x() - r); i <= std::min(n - 1, home.x() + r); ++i)
+    for (int j = std::max(0, home.y() - r); j <= std::min(n - 1, home.y() + r); ++j)
+      for (int k = std::max(0, home.z() - r); k <= std::min(n - 1, home.z() + r); ++k)
+        if (std::max({std::abs(i - home.x()), std::abs(j - home.y()), std::abs(k - home.z())}) == r)
+          for (int e : grid.bucket(Eigen::Vector3i(i, j, k))) out.push_back(e);
+}
 
 constexpr double kInsideTol = 1e-10;  // reference-coordinate rounding of the inverse map
 
 // The cell containing X, or -1; its reference coordinates in xi.
-int containing_cell(const CellGrid& grid, CellMaps& maps, CellType cell, const Eigen::Vector3d& X, Eigen::Vector3d& xi) {
-  for (int e : grid.at(grid.bucket(X))) {
-    if (!grid.in_box(e, X)) continue;
+int containing_cell(const BoxBucketGrid& grid, CellMaps& maps, CellType cell, const Eigen::Vector3d& X,
+                    Eigen::Vector3d& xi) {
+  for (int e : grid.bucket(grid.bucket_of(X))) {
+    if (!grid.box(e).contains(X)) continue;
     xi = maps.reference(e, X);
     if (inside(cell, xi, kInsideTol)) return e;
   }
@@ -166,16 +134,17 @@ int containing_cell(const CellGrid& grid, CellMaps& maps, CellType cell, const E
 // shell past the first that holds a cell (a cell's box may reach into a nearer
 // bucket than the one of its nearest point, so this is the nearest among the
 // cells near the point, not a global search).
-int nearest_cell(const CellGrid& grid, CellMaps& maps, CellType cell, const Eigen::Vector3d& X, Eigen::Vector3d& xi,
-                 std::vector<int>& candidates) {
+int nearest_cell(const BoxBucketGrid& grid, CellMaps& maps, CellType cell, const Eigen::Vector3d& X,
+                 Eigen::Vector3d& xi, std::vector<int>& candidates) {
   double best = std::numeric_limits<double>::infinity();
-  int found = -1, last = grid.n();
-  const Eigen::Vector3i home = grid.bucket(X);
-  for (int r = 0; r <= std::min(last, grid.n()); ++r) {
+  const int n = grid.buckets_per_axis();
+  int found = -1, last = n;
+  const Eigen::Vector3i home = grid.bucket_of(X);
+  for (int r = 0; r <= std::min(last, n); ++r) {
     candidates.clear();
-    grid.shell(home, r, candidates);
+    shell(grid, home, r, candidates);
     for (int e : candidates) {
-      if (grid.box_distance_to(e, X) >= best) continue;  // cannot be nearer
+      if (box_distance(X, grid.box(e)) >= best) continue;  // cannot be nearer
       const Eigen::Vector3d x = maps.reference(e, X);
       const double d = (maps.position(e, clamp_to_reference(cell, x)) - X).norm();
       if (d < best) {
@@ -184,7 +153,7 @@ int nearest_cell(const CellGrid& grid, CellMaps& maps, CellType cell, const Eige
         xi = x;
       }
     }
-    if (!candidates.empty() && last == grid.n()) last = r + 1;
+    if (!candidates.empty() && last == n) last = r + 1;
   }
   return found;
 }
@@ -202,7 +171,7 @@ EmbeddedPointMap locate_embedded_points(const Mesh& background, const Eigen::Mat
     fits[e] = fit_affine_cell(background, e);
     if (fits[e].degenerate) throw std::invalid_argument(fmt::format("locate_embedded_points: element {} is degenerate", e));
   }
-  const CellGrid grid(background, fits, active);
+  const BoxBucketGrid grid = cell_grid(background, fits, active);
 
   EmbeddedPointMap out;
   const int np = static_cast<int>(points.cols());
@@ -287,23 +256,21 @@ Mesh boundary_surface(const Mesh& tets, std::vector<int>* vertex_of) {
   std::vector<std::array<int, 3>> tris;
   for (const auto& [key, value] : faces)
     if (value.first == 1) tris.push_back(value.second);
+  Mesh surface;
+  surface.cell = CellType::Triangle;
+  surface.order = 1;
+  surface.elements.resize(3, static_cast<Eigen::Index>(tris.size()));
   std::vector<int> new_id(tets.num_nodes(), -1), old_id;
-  for (auto& t : tris)
-    for (int& v : t) {
+  for (size_t t = 0; t < tris.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int v = tris[t][k];
       if (new_id[v] < 0) {
         new_id[v] = static_cast<int>(old_id.size());
         old_id.push_back(v);
       }
-      v = new_id[v];
+      surface.elements(k, static_cast<Eigen::Index>(t)) = new_id[v];
     }
-  Mesh surface;
-  surface.cell = CellType::Triangle;
-  surface.order = 1;
-  surface.nodes.resize(3, static_cast<Eigen::Index>(old_id.size()));
-  for (size_t i = 0; i < old_id.size(); ++i) surface.nodes.col(static_cast<Eigen::Index>(i)) = tets.nodes.col(old_id[i]);
-  surface.elements.resize(3, static_cast<Eigen::Index>(tris.size()));
-  for (size_t t = 0; t < tris.size(); ++t)
-    for (int k = 0; k < 3; ++k) surface.elements(k, static_cast<Eigen::Index>(t)) = tris[t][k];
+  surface.nodes = tets.nodes(Eigen::all, old_id);
   if (vertex_of) *vertex_of = std::move(old_id);
   return surface;
 }

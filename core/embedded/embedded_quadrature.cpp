@@ -14,8 +14,7 @@ std::vector<Tetrahedron> mesh_tetrahedra(const Mesh& mesh) {
   if (mesh.cell != CellType::Tetrahedron)
     throw std::invalid_argument("mesh_tetrahedra: the embedded geometry must be a tetrahedral mesh");
   std::vector<Tetrahedron> tets(mesh.num_elements());
-  for (int e = 0; e < mesh.num_elements(); ++e)
-    for (int i = 0; i < 4; ++i) tets[e].v.col(i) = mesh.nodes.col(mesh.elements(i, e));
+  for (int e = 0; e < mesh.num_elements(); ++e) tets[e].v = mesh.nodes(Eigen::all, mesh.elements.col(e).head<4>());
   return tets;
 }
 
@@ -54,15 +53,17 @@ BoxBucketGrid::BoxBucketGrid(std::vector<Eigen::AlignedBox3d> boxes, int buckets
   lo_ = all.min();
   size_ = (all.max() - all.min()).cwiseMax(1e-300) / n_;
   buckets_.resize(static_cast<size_t>(n_) * n_ * n_);
-  auto bucket = [&](const Eigen::Vector3d& x) {
-    return ((x - lo_).cwiseQuotient(size_)).array().floor().cast<int>().cwiseMax(0).cwiseMin(n_ - 1).matrix().eval();
-  };
   for (size_t k = 0; k < boxes_.size(); ++k) {
-    const Eigen::Vector3i a = bucket(boxes_[k].min()), b = bucket(boxes_[k].max());
+    if (boxes_[k].isEmpty()) continue;
+    const Eigen::Vector3i a = bucket_of(boxes_[k].min()), b = bucket_of(boxes_[k].max());
     for (int i = a.x(); i <= b.x(); ++i)
       for (int j = a.y(); j <= b.y(); ++j)
-        for (int l = a.z(); l <= b.z(); ++l) buckets_[(static_cast<size_t>(i) * n_ + j) * n_ + l].push_back(static_cast<int>(k));
+        for (int l = a.z(); l <= b.z(); ++l) buckets_[index(i, j, l)].push_back(static_cast<int>(k));
   }
+}
+
+Eigen::Vector3i BoxBucketGrid::bucket_of(const Eigen::Vector3d& x) const {
+  return ((x - lo_).cwiseQuotient(size_)).array().floor().cast<int>().cwiseMax(0).cwiseMin(n_ - 1).matrix();
 }
 
 std::vector<int> BoxBucketGrid::candidates(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const {
@@ -75,7 +76,7 @@ std::vector<int> BoxBucketGrid::candidates(const Eigen::Vector3d& lo, const Eige
   for (int i = a.x(); i <= b.x(); ++i)
     for (int j = a.y(); j <= b.y(); ++j)
       for (int l = a.z(); l <= b.z(); ++l)
-        for (int k : buckets_[(static_cast<size_t>(i) * n_ + j) * n_ + l])
+        for (int k : buckets_[index(i, j, l)])
           if ((boxes_[k].min().array() <= hi.array()).all() && (boxes_[k].max().array() >= lo.array()).all())
             out.push_back(k);
   std::sort(out.begin(), out.end());

@@ -37,14 +37,22 @@ void add_clipped_rule(const Tetrahedron& tet, std::span<const HalfSpace> cell, i
 std::vector<Eigen::AlignedBox3d> bounding_boxes(std::span<const Tetrahedron> tets);
 
 /// Uniform grid of buckets over a set of boxes (the bounding boxes of embedded
-/// tets or triangles); each box is listed in every bucket it overlaps.
+/// tets or triangles, or of background cells: embedded_points.cpp); each box is
+/// listed in every bucket it overlaps, ascending, and an empty box in none.
 class BoxBucketGrid {
  public:
   explicit BoxBucketGrid(std::vector<Eigen::AlignedBox3d> boxes, int buckets_per_axis = 0);  ///< 0: ~cbrt(n)
   /// Indices of the boxes that overlap [lo, hi], each once, ascending.
   std::vector<int> candidates(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) const;
+  int buckets_per_axis() const { return n_; }
+  /// The bucket of a point (clamped to the grid).
+  Eigen::Vector3i bucket_of(const Eigen::Vector3d& x) const;
+  /// The boxes listed in bucket b.
+  const std::vector<int>& bucket(const Eigen::Vector3i& b) const { return buckets_[index(b.x(), b.y(), b.z())]; }
+  const Eigen::AlignedBox3d& box(int k) const { return boxes_[k]; }
 
  private:
+  size_t index(int i, int j, int k) const { return (static_cast<size_t>(i) * n_ + j) * n_ + k; }
   Eigen::Vector3d lo_, size_;
   int n_ = 1;
   std::vector<std::vector<int>> buckets_;

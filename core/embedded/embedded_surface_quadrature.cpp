@@ -95,11 +95,10 @@ EmbeddedSurfaceRule embedded_surface_rule(const Mesh& background, const Mesh& su
   std::vector<CellPoints> per_cell(ne);
 #pragma omp parallel for schedule(dynamic, 16)
   for (int e = 0; e < ne; ++e) {
-    Eigen::AlignedBox3d cell_box;
-    for (int i = 0; i < background.vertices_per_element(); ++i)
-      cell_box.extend(Eigen::Vector3d(background.nodes.col(background.elements(i, e))));
+    const Eigen::Matrix3Xd vertices =
+        background.nodes(Eigen::all, background.elements.col(e).head(background.vertices_per_element()));
     const std::vector<HalfSpace> planes = cell_half_spaces(background.cell, maps[e]);
-    for (int t : grid.candidates(cell_box.min(), cell_box.max())) {
+    for (int t : grid.candidates(vertices.rowwise().minCoeff(), vertices.rowwise().maxCoeff())) {
       if (!(areas[t] > 0.0)) continue;
       ConvexPolygon piece = triangles[t];
       for (const HalfSpace& h : planes) {
@@ -131,13 +130,9 @@ EmbeddedSurfaceRule embedded_surface_rule(const Mesh& background, const Mesh& su
       if (!active.empty() && !active[e]) moved.push_back(static_cast<int>(q));
     }
   if (!moved.empty()) {
-    Eigen::Matrix3Xd P(3, static_cast<Eigen::Index>(moved.size()));
-    for (size_t k = 0; k < moved.size(); ++k) P.col(static_cast<Eigen::Index>(k)) = rule.points.col(moved[k]);
-    const EmbeddedPointMap map = locate_embedded_points(background, P, active);
-    for (size_t k = 0; k < moved.size(); ++k) {
-      rule.element[moved[k]] = map.element[k];
-      rule.xi.col(moved[k]) = map.xi.col(static_cast<Eigen::Index>(k));
-    }
+    const EmbeddedPointMap map = locate_embedded_points(background, rule.points(Eigen::all, moved), active);
+    for (size_t k = 0; k < moved.size(); ++k) rule.element[moved[k]] = map.element[k];
+    rule.xi(Eigen::all, moved) = map.xi;
     rule.num_relocated = static_cast<int>(moved.size());
   }
   return rule;

@@ -117,7 +117,8 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
   out.volume_fraction.assign(ne, 0.0);
   out.points_before.assign(ne, 0);
   out.points_after.assign(ne, 0);
-  std::vector<double> residual(ne, 0.0), lp_seconds(ne, 0.0), gen_seconds(ne, 0.0);
+  out.moment_residual.assign(ne, 0.0);
+  std::vector<double> lp_seconds(ne, 0.0), gen_seconds(ne, 0.0);
   std::vector<char> failed(ne, 0);
   const double reference_volume = cell == CellType::Tetrahedron ? 1.0 / 6.0 : 8.0;
 
@@ -127,12 +128,9 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
     const auto tc = Clock::now();
     const AffineCell& map = maps[e];
     const std::vector<HalfSpace> planes = cell_half_spaces(cell, map);
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-    for (int i = 0; i < background.vertices_per_element(); ++i) {
-      lo = lo.cwiseMin(background.nodes.col(background.elements(i, e)));
-      hi = hi.cwiseMax(background.nodes.col(background.elements(i, e)));
-    }
-    const std::vector<int> candidates = grid.candidates(lo, hi);
+    const Eigen::Matrix3Xd vertices =
+        background.nodes(Eigen::all, background.elements.col(e).head(background.vertices_per_element()));
+    const std::vector<int> candidates = grid.candidates(vertices.rowwise().minCoeff(), vertices.rowwise().maxCoeff());
     const double jac = std::abs(map.A.determinant());
     // Clipped rules of both strengths, in reference coordinates: w_ref = w / |det A| (eq. 11-12).
     auto clipped = [&](int degree) {
@@ -149,12 +147,8 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
     auto [xs, ws] = clipped(out.stiffness_degree);
     const double fraction = ws.sum() / reference_volume;
     out.volume_fraction[e] = fraction;
-    if (ws.size() == 0) {
-      out.rules[e] = out.mass_rules[e] = empty_rule(cell, p);
-      gen_seconds[e] = seconds_since(tc);
-      continue;
-    }
-    if (options.standard_rule_inside && fraction >= 1.0 - 1e-12) {  // uncut: standard rules (null)
+    if (ws.size() == 0) out.rules[e] = out.mass_rules[e] = empty_rule(cell, p);
+    if (ws.size() == 0 || (options.standard_rule_inside && fraction >= 1.0 - 1e-12)) {  // uncut: standard rules (null)
       gen_seconds[e] = seconds_since(tc);
       continue;
     }
@@ -165,7 +159,7 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
     if (options.simplify) {
       SimplifiedRule s = simplify_quadrature(xs, ws, out.stiffness_degree);
       failed[e] = !s.simplified && s.points_before > s.basis_size;  // N <= M is returned as is, not a failure
-      residual[e] = s.moment_residual;
+      out.moment_residual[e] = s.moment_residual;
       if (s.simplified) {
         xs = std::move(s.points);
         ws = std::move(s.weights);
@@ -176,13 +170,12 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
     out.rules[e] = make_rule(cell, p, std::move(xs), std::move(ws));
     out.mass_rules[e] = make_rule(cell, p, std::move(xm), std::move(wm));
   }
-  out.moment_residual = residual;
   for (int e = 0; e < ne; ++e) {
     out.points += out.points_before[e];
     out.simplified_points += out.points_after[e];
     if (out.mass_rules[e]) out.mass_points += out.mass_rules[e]->rule.size();
     out.simplification_failures += failed[e];
-    out.max_moment_residual = std::max(out.max_moment_residual, residual[e]);
+    out.max_moment_residual = std::max(out.max_moment_residual, out.moment_residual[e]);
     out.simplification_seconds += lp_seconds[e];
     out.generation_seconds += gen_seconds[e];
   }

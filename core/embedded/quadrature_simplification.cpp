@@ -148,6 +148,17 @@ std::optional<BasicSolution> basic_feasible_point(const Eigen::MatrixXd& A, cons
   return out;
 }
 
+// Weights on `support` solving the constraints of eq. 10 restricted to those
+// columns, A_S w_S = c, by least squares (column-pivoted QR): the active set's
+// solve on its passive columns, and the refinement of the simplex's basic point.
+// At most r columns of a basis matrix: the system is square or overdetermined and
+// consistent up to rounding and dropped weights.
+Eigen::VectorXd solve_on(const Eigen::MatrixXd& A, const Eigen::VectorXd& c, const std::vector<int>& support) {
+  if (support.empty()) return {};
+  const Eigen::MatrixXd AS = A(Eigen::all, support);
+  return AS.colPivHouseholderQr().solve(c);
+}
+
 // Lawson & Hanson (1974), "Solving Least Squares Problems", ch. 23: the active-set
 // method for min |A w - c| over w >= 0. Its passive (positive) columns stay
 // linearly independent, so it ends with at most rank(A) = r positive weights: when
@@ -167,11 +178,6 @@ ActiveSetResult active_set_nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd&
   // A's rows are orthonormal (|A^T r| <= |r|): a gradient below this is rounding
   // of a residual at the level of eps |c| per column summed over the N columns.
   const double tolerance = 16.0 * std::numeric_limits<double>::epsilon() * c.norm() * std::sqrt(static_cast<double>(n));
-  auto solve_passive = [&] {  // z = argmin |A_P z - c|
-    Eigen::MatrixXd AP(A.rows(), static_cast<Eigen::Index>(P.size()));
-    for (size_t k = 0; k < P.size(); ++k) AP.col(static_cast<Eigen::Index>(k)) = A.col(P[k]);
-    z = AP.colPivHouseholderQr().solve(c);
-  };
   ActiveSetResult out;
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     const Eigen::VectorXd g = A.transpose() * r;  // the negative gradient of |A w - c|^2 / 2
@@ -192,7 +198,7 @@ ActiveSetResult active_set_nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd&
     // w stays >= 0, drop the columns that reach zero, and solve again.
     bool positive = false;
     for (size_t inner = 0; inner <= P.size() && !P.empty(); ++inner) {
-      solve_passive();
+      z = solve_on(A, c, P);  // argmin |A_P z - c|
       if ((z.array() > 0.0).all()) {
         positive = true;
         break;
@@ -225,8 +231,7 @@ ActiveSetResult active_set_nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd&
     for (const int j : P) r -= w[j] * A.col(j);
   }
   out.support = P;
-  out.weights.resize(static_cast<Eigen::Index>(P.size()));
-  for (size_t k = 0; k < P.size(); ++k) out.weights[static_cast<Eigen::Index>(k)] = w[P[k]];
+  out.weights = w(P);
   return out;
 }
 
@@ -242,17 +247,6 @@ Eigen::VectorXd accurate_product(const Eigen::MatrixXd& B, const Eigen::VectorXd
   Eigen::VectorXd out(B.rows());
   for (Eigen::Index i = 0; i < B.rows(); ++i) out[i] = static_cast<double>(sum[static_cast<size_t>(i)]);
   return out;
-}
-
-// Weights on `support` solving the constraints of eq. 10 restricted to those
-// columns, A_S w_S = c, by least squares (column-pivoted QR). At most r columns of
-// a basis matrix: the system is square or overdetermined and consistent up to
-// rounding and dropped weights.
-Eigen::VectorXd refine(const Eigen::MatrixXd& A, const Eigen::VectorXd& c, const std::vector<int>& support) {
-  if (support.empty()) return {};
-  Eigen::MatrixXd AS(A.rows(), static_cast<Eigen::Index>(support.size()));
-  for (size_t k = 0; k < support.size(); ++k) AS.col(static_cast<Eigen::Index>(k)) = A.col(support[k]);
-  return AS.colPivHouseholderQr().solve(c);
 }
 
 // max_k |(P_S w_S - P w0)_k| / sum |w0| (SimplifiedRule::moment_residual), in long double.
@@ -347,13 +341,13 @@ SimplifiedRule simplify_quadrature(const Eigen::MatrixXd& points, const Eigen::V
   // at rounding level with either sign: drop those <= 0 and solve again; each
   // drop moves the moments by about the dropped weight.
   std::vector<int> support = basic->columns;
-  Eigen::VectorXd w = refine(A, c, support);
+  Eigen::VectorXd w = solve_on(A, c, support);
   for (int round = 0; round < 4 && !support.empty() && (w.array() <= 0.0).any(); ++round) {
     std::vector<int> kept;
     for (size_t k = 0; k < support.size(); ++k)
       if (w[static_cast<Eigen::Index>(k)] > 0.0) kept.push_back(support[k]);
     support = kept;
-    w = refine(A, c, support);
+    w = solve_on(A, c, support);
   }
   const bool refined_ok = !support.empty() && (w.array() > 0.0).all();
   double residual = refined_ok ? moment_residual(P, Pw0, scale, support, w) : kInfinity;

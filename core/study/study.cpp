@@ -158,14 +158,6 @@ std::string summary_markdown(const json& study) {
   return md;
 }
 
-}  // namespace
-
-double richardson_error(double distance_to_coarser, double ratio, double order) {
-  return distance_to_coarser / (std::pow(ratio, order) - 1.0);
-}
-
-namespace {
-
 // A run's row: what it is (its overrides, cell, order) and what it cost.
 json describe(const StudyRun& r, const RecordedRun& run) {
   json row = cost_of(run);
@@ -185,6 +177,10 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 }  // namespace
+
+double richardson_error(double distance_to_coarser, double ratio, double order) {
+  return distance_to_coarser / (std::pow(ratio, order) - 1.0);
+}
 
 json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions& options) {
   const auto t0 = Clock::now();

@@ -89,12 +89,9 @@ Study parse_study(const std::string& text, const std::string& origin) {
   }
   if (root.at("reference").has("coarser")) {
     const Field c = root.at("reference").at("coarser");
-    StudyRun coarse;
-    coarse.name = "reference-coarser";
-    coarse.family = "reference";
-    coarse.overrides = strings(c);
-    coarse.scene = run_scene_of(s, c, coarse.overrides);
-    s.coarser_reference = std::move(coarse);
+    const SceneOverrides overrides = strings(c);
+    s.coarser_reference = StudyRun{.name = "reference-coarser", .family = "reference", .overrides = overrides,
+                                   .scene = run_scene_of(s, c, overrides)};
   }
   const Field runs = root.at("runs");
   if (!runs.raw().is_array() || runs.raw().empty()) runs.fail("must be a non-empty array of runs");
