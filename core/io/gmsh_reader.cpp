@@ -104,11 +104,22 @@ class Parser {
     in_.expect_size(1, what);
     return in_.integer(0, what, 0, INT_MAX);
   }
-  // A 4.1 section's first line: numEntityBlocks numEntries minTag maxTag.
-  std::pair<long long, long long> block_counts(std::string_view entries) {
-    record(fmt::format("the numbers of blocks and {}", entries));
-    in_.expect_size(4, fmt::format("numEntityBlocks num{} minTag maxTag", entries));
-    return {in_.integer(0, "number of blocks", 0, LLONG_MAX), in_.integer(1, "total count", 0, INT_MAX)};
+  // A 4.1 $Nodes or $Elements section (once): numEntityBlocks numEntries minTag maxTag,
+  // then the blocks; read_block reads one and returns how many `entries` it held.
+  template <class ReadBlock>
+  void read_blocks(int& seen_line, std::string_view entries, ReadBlock read_block) {
+    once(seen_line);
+    record(fmt::format("the numbers of blocks and {}", section_));
+    in_.expect_size(4, fmt::format("numEntityBlocks num{} minTag maxTag", section_));
+    const long long blocks = in_.integer(0, "number of blocks", 0, LLONG_MAX);
+    const long long total = in_.integer(1, "total count", 0, INT_MAX);
+    const int header = in_.number();
+    long long seen = 0;
+    for (long long b = 0; b < blocks; ++b)
+      if ((seen += read_block()) > INT_MAX) in_.fail(fmt::format("too many {}", entries));
+    if (seen != total)
+      in_.fail_at(header, fmt::format("${} announces {} {} but its blocks hold {}", section_, total, entries, seen));
+    end_section();
   }
   // An unknown section ($Comments, $NodeData, $Periodic, ...): skipped up to its end.
   void skip_section() {
@@ -215,11 +226,7 @@ class Parser {
   }
 
   void read_nodes4() {
-    once(nodes_line_);
-    const auto [blocks, total] = block_counts("Nodes");
-    const int header = in_.number();
-    long long seen = 0;
-    for (long long b = 0; b < blocks; ++b) {
+    read_blocks(nodes_line_, "nodes", [&] {
       record("a node block header");
       in_.expect_size(4, "entityDim entityTag parametric numNodesInBlock");
       const int dim = in_.small(0, "entity dimension", 0, 3);
@@ -236,11 +243,8 @@ class Parser {
         in_.expect_size(3 + parametric * dim, parametric ? "x y z and parametric coordinates" : "x y z");
         add_coordinates(0);
       }
-      if ((seen += n) > INT_MAX) in_.fail("too many nodes");
-    }
-    if (seen != total)
-      in_.fail_at(header, fmt::format("$Nodes announces {} nodes but its blocks hold {}", total, seen));
-    end_section();
+      return n;
+    });
   }
 
   void read_nodes2() {
@@ -272,11 +276,7 @@ class Parser {
   }
 
   void read_elements4() {
-    once(elements_line_);
-    const auto [blocks, total] = block_counts("Elements");
-    const int header = in_.number();
-    long long seen = 0;
-    for (long long b = 0; b < blocks; ++b) {
+    read_blocks(elements_line_, "elements", [&] {
       record("an element block header");
       in_.expect_size(4, "entityDim entityTag elementType numElementsInBlock");
       const int dim = in_.small(0, "entity dimension", 0, 3);
@@ -291,11 +291,8 @@ class Parser {
         record("an element");
         add_element(in_.integer(0, "element tag", 1, LLONG_MAX), type, dim, entity, 1);
       }
-      if ((seen += n) > INT_MAX) in_.fail("too many elements");
-    }
-    if (seen != total)
-      in_.fail_at(header, fmt::format("$Elements announces {} elements but its blocks hold {}", total, seen));
-    end_section();
+      return n;
+    });
   }
 
   void read_elements2() {
