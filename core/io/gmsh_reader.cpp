@@ -98,11 +98,18 @@ class Parser {
     if (seen) in_.fail(fmt::format("second ${} section (the first is at line {})", section_, seen));
     seen = section_line_;
   }
-  // A section's first line when it is a single count (2.2 nodes and elements, names).
-  long long count_line(std::string_view what) {
-    record(what);
-    in_.expect_size(1, what);
-    return in_.integer(0, what, 0, INT_MAX);
+  // A section whose first line is a single count (2.2 nodes and elements, names),
+  // then that many records, each read by read_record.
+  template <class ReadRecord>
+  void read_counted(std::string_view count_what, std::string_view what, ReadRecord read_record) {
+    record(count_what);
+    in_.expect_size(1, count_what);
+    const long long n = in_.integer(0, count_what, 0, INT_MAX);
+    for (long long i = 0; i < n; ++i) {
+      record(what);
+      read_record();
+    }
+    end_section();
   }
   // A 4.1 $Nodes or $Elements section (once): numEntityBlocks numEntries minTag maxTag,
   // then the blocks; read_block reads one and returns how many `entries` it held.
@@ -163,9 +170,7 @@ class Parser {
   }
 
   void read_names() {
-    const long long n = count_line("number of physical names");
-    for (long long i = 0; i < n; ++i) {
-      record("a physical name");
+    read_counted("number of physical names", "a physical name", [&] {
       if (in_.size() < 3) in_.fail(fmt::format("expected 'dimension tag \"name\"', got {}", quoted(in_.rest(0))));
       const Key key{in_.small(0, "physical group dimension", 0, 3), in_.small(1, "physical tag")};
       std::string_view name = in_.rest(2);
@@ -176,8 +181,7 @@ class Parser {
       if (name.empty()) in_.fail("empty physical name");
       if (!names_.emplace(key, std::string(name)).second)
         in_.fail(fmt::format("physical group (dimension {}, tag {}) is named twice", key.first, key.second));
-    }
-    end_section();
+    });
   }
 
   // 4.1: which physical groups each point, curve, surface and volume belongs to.
@@ -249,14 +253,11 @@ class Parser {
 
   void read_nodes2() {
     once(nodes_line_);
-    const long long n = count_line("number of nodes");
-    for (long long i = 0; i < n; ++i) {
-      record("a node");
+    read_counted("number of nodes", "a node", [&] {
       in_.expect_size(4, "node tag x y z");
       add_node(in_.integer(0, "node tag", 1, LLONG_MAX));
       add_coordinates(1);
-    }
-    end_section();
+    });
   }
 
   // Stores the element on the current line; its node tags are tokens first..end.
@@ -297,9 +298,7 @@ class Parser {
 
   void read_elements2() {
     once(elements_line_);
-    const long long n = count_line("number of elements");
-    for (long long i = 0; i < n; ++i) {
-      record("an element");
+    read_counted("number of elements", "an element", [&] {
       if (in_.size() < 3) in_.fail("expected 'elm-number elm-type number-of-tags <tags> <nodes>'");
       const long long tag = in_.integer(0, "element number", 1, LLONG_MAX);
       const int type = in_.small(1, "element type");
@@ -309,8 +308,7 @@ class Parser {
       const bool other_volume =
           std::find(std::begin(kOtherVolumeTypes), std::end(kOtherVolumeTypes), type) != std::end(kOtherVolumeTypes);
       add_element(tag, type, t ? t->dim : (other_volume ? 3 : -1), ntags ? in_.small(3, "physical tag") : 0, 3 + ntags);
-    }
-    end_section();
+    });
   }
 
   Mesh assemble() {
