@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <ranges>
 #include <stdexcept>
 
 namespace hofem {
@@ -89,10 +90,8 @@ std::vector<int> boundary_nodes(const Scene& s, const Mesh& mesh, size_t index) 
   if (!b.set.empty()) {
     const auto it = mesh.node_sets.find(b.set);
     if (it == mesh.node_sets.end()) {
-      std::vector<std::string> names;
-      for (const auto& [k, v] : mesh.node_sets) names.push_back(k);
       throw SceneError(fmt::format("{}: boundary[{}].nodes = '{}' is not a node set of the mesh (valid: {})", s.file,
-                                   index, b.set, fmt::join(names, ", ")));
+                                   index, b.set, fmt::join(std::views::keys(mesh.node_sets), ", ")));
     }
     nodes = it->second;
   } else {
