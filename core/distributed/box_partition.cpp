@@ -147,9 +147,7 @@ LocalMesh box_piece(const BoxSpec& box, CellType cell, int order, int parts, int
   for (const auto& face : names)
     for (const char* name : face) local.mesh.node_sets[name];  // present even if empty on this piece
   local.mesh.node_sets["boundary"] = std::move(boundary);
-  local.mesh.elements = m.elements;
-  for (Eigen::Index e = 0; e < m.elements.cols(); ++e)
-    for (Eigen::Index i = 0; i < m.elements.rows(); ++i) local.mesh.elements(i, e) = new_id[m.elements(i, e)];
+  local.mesh.elements = m.elements.unaryExpr([&](int n) { return new_id[n]; });
   // Global element index: the cube's index (x fastest), times 6 tets for tets, plus the tet.
   const int per_cube = cell == CellType::Tetrahedron ? 6 : 1;
   for (int kz = mine[2][0]; kz < mine[2][1]; ++kz)

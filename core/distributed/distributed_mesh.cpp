@@ -9,14 +9,6 @@
 
 namespace hofem {
 
-namespace {
-
-Halo node_halo(MPI_Comm comm, const LocalMesh& local) {
-  return Halo(comm, local.global_node, local.owner, 3);
-}
-
-}  // namespace
-
 double DistributedMesh::sum(double value) const { return sum_over_ranks(value, comm); }
 
 namespace {
@@ -86,7 +78,7 @@ DistributedMesh distribute_piece(MPI_Comm comm, LocalMesh piece) {
   MPI_Comm_size(comm, &ranks);
   if (piece.part != rank)
     throw std::invalid_argument(fmt::format("distribute_piece: rank {} was given part {}", rank, piece.part));
-  Halo halo = node_halo(comm, piece);
+  Halo halo(comm, piece.global_node, piece.owner, 3);  // 3 values per node
   return DistributedMesh{comm, rank, ranks, std::move(piece), std::move(halo)};
 }
 

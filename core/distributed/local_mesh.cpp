@@ -37,16 +37,9 @@ LocalMesh extract_part(const Mesh& global, const std::vector<int>& part, int p) 
   Mesh& m = local.mesh;
   m.cell = global.cell;
   m.order = global.order;
-  m.nodes.resize(3, static_cast<Eigen::Index>(local.global_node.size()));
-  local.owner.resize(local.global_node.size());
-  for (size_t i = 0; i < local.global_node.size(); ++i) {
-    m.nodes.col(static_cast<Eigen::Index>(i)) = global.nodes.col(local.global_node[i]);
-    local.owner[i] = owner[local.global_node[i]];
-  }
-  m.elements.resize(global.nodes_per_element(), static_cast<Eigen::Index>(local.global_element.size()));
-  for (size_t k = 0; k < local.global_element.size(); ++k)
-    for (int i = 0; i < global.nodes_per_element(); ++i)
-      m.elements(i, static_cast<Eigen::Index>(k)) = local_of[global.elements(i, local.global_element[k])];
+  m.nodes = global.nodes(Eigen::all, local.global_node);
+  for (const std::int64_t n : local.global_node) local.owner.push_back(owner[n]);
+  m.elements = global.elements(Eigen::all, local.global_element).unaryExpr([&](int n) { return local_of[n]; });
   for (const auto& [name, nodes] : global.node_sets) {
     std::vector<int>& mine = m.node_sets[name];
     for (int n : nodes)

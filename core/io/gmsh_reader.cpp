@@ -98,17 +98,35 @@ class Parser {
     if (seen) in_.fail(fmt::format("second ${} section (the first is at line {})", section_, seen));
     seen = section_line_;
   }
-  // A section's first line when it is a single count (2.2 nodes and elements, names).
-  long long count_line(std::string_view what) {
-    record(what);
-    in_.expect_size(1, what);
-    return in_.integer(0, what, 0, INT_MAX);
+  // A section whose first line is a single count (2.2 nodes and elements, names),
+  // then that many records, each read by read_record.
+  template <class ReadRecord>
+  void read_counted(std::string_view count_what, std::string_view what, ReadRecord read_record) {
+    record(count_what);
+    in_.expect_size(1, count_what);
+    const long long n = in_.integer(0, count_what, 0, INT_MAX);
+    for (long long i = 0; i < n; ++i) {
+      record(what);
+      read_record();
+    }
+    end_section();
   }
-  // A 4.1 section's first line: numEntityBlocks numEntries minTag maxTag.
-  std::pair<long long, long long> block_counts(std::string_view entries) {
-    record(fmt::format("the numbers of blocks and {}", entries));
-    in_.expect_size(4, fmt::format("numEntityBlocks num{} minTag maxTag", entries));
-    return {in_.integer(0, "number of blocks", 0, LLONG_MAX), in_.integer(1, "total count", 0, INT_MAX)};
+  // A 4.1 $Nodes or $Elements section (once): numEntityBlocks numEntries minTag maxTag,
+  // then the blocks; read_block reads one and returns how many `entries` it held.
+  template <class ReadBlock>
+  void read_blocks(int& seen_line, std::string_view entries, ReadBlock read_block) {
+    once(seen_line);
+    record(fmt::format("the numbers of blocks and {}", section_));
+    in_.expect_size(4, fmt::format("numEntityBlocks num{} minTag maxTag", section_));
+    const long long blocks = in_.integer(0, "number of blocks", 0, LLONG_MAX);
+    const long long total = in_.integer(1, "total count", 0, INT_MAX);
+    const int header = in_.number();
+    long long seen = 0;
+    for (long long b = 0; b < blocks; ++b)
+      if ((seen += read_block()) > INT_MAX) in_.fail(fmt::format("too many {}", entries));
+    if (seen != total)
+      in_.fail_at(header, fmt::format("${} announces {} {} but its blocks hold {}", section_, total, entries, seen));
+    end_section();
   }
   // An unknown section ($Comments, $NodeData, $Periodic, ...): skipped up to its end.
   void skip_section() {
@@ -152,9 +170,7 @@ class Parser {
   }
 
   void read_names() {
-    const long long n = count_line("number of physical names");
-    for (long long i = 0; i < n; ++i) {
-      record("a physical name");
+    read_counted("number of physical names", "a physical name", [&] {
       if (in_.size() < 3) in_.fail(fmt::format("expected 'dimension tag \"name\"', got {}", quoted(in_.rest(0))));
       const Key key{in_.small(0, "physical group dimension", 0, 3), in_.small(1, "physical tag")};
       std::string_view name = in_.rest(2);
@@ -165,8 +181,7 @@ class Parser {
       if (name.empty()) in_.fail("empty physical name");
       if (!names_.emplace(key, std::string(name)).second)
         in_.fail(fmt::format("physical group (dimension {}, tag {}) is named twice", key.first, key.second));
-    }
-    end_section();
+    });
   }
 
   // 4.1: which physical groups each point, curve, surface and volume belongs to.
@@ -215,11 +230,7 @@ class Parser {
   }
 
   void read_nodes4() {
-    once(nodes_line_);
-    const auto [blocks, total] = block_counts("Nodes");
-    const int header = in_.number();
-    long long seen = 0;
-    for (long long b = 0; b < blocks; ++b) {
+    read_blocks(nodes_line_, "nodes", [&] {
       record("a node block header");
       in_.expect_size(4, "entityDim entityTag parametric numNodesInBlock");
       const int dim = in_.small(0, "entity dimension", 0, 3);
@@ -236,23 +247,17 @@ class Parser {
         in_.expect_size(3 + parametric * dim, parametric ? "x y z and parametric coordinates" : "x y z");
         add_coordinates(0);
       }
-      if ((seen += n) > INT_MAX) in_.fail("too many nodes");
-    }
-    if (seen != total)
-      in_.fail_at(header, fmt::format("$Nodes announces {} nodes but its blocks hold {}", total, seen));
-    end_section();
+      return n;
+    });
   }
 
   void read_nodes2() {
     once(nodes_line_);
-    const long long n = count_line("number of nodes");
-    for (long long i = 0; i < n; ++i) {
-      record("a node");
+    read_counted("number of nodes", "a node", [&] {
       in_.expect_size(4, "node tag x y z");
       add_node(in_.integer(0, "node tag", 1, LLONG_MAX));
       add_coordinates(1);
-    }
-    end_section();
+    });
   }
 
   // Stores the element on the current line; its node tags are tokens first..end.
@@ -272,11 +277,7 @@ class Parser {
   }
 
   void read_elements4() {
-    once(elements_line_);
-    const auto [blocks, total] = block_counts("Elements");
-    const int header = in_.number();
-    long long seen = 0;
-    for (long long b = 0; b < blocks; ++b) {
+    read_blocks(elements_line_, "elements", [&] {
       record("an element block header");
       in_.expect_size(4, "entityDim entityTag elementType numElementsInBlock");
       const int dim = in_.small(0, "entity dimension", 0, 3);
@@ -291,18 +292,13 @@ class Parser {
         record("an element");
         add_element(in_.integer(0, "element tag", 1, LLONG_MAX), type, dim, entity, 1);
       }
-      if ((seen += n) > INT_MAX) in_.fail("too many elements");
-    }
-    if (seen != total)
-      in_.fail_at(header, fmt::format("$Elements announces {} elements but its blocks hold {}", total, seen));
-    end_section();
+      return n;
+    });
   }
 
   void read_elements2() {
     once(elements_line_);
-    const long long n = count_line("number of elements");
-    for (long long i = 0; i < n; ++i) {
-      record("an element");
+    read_counted("number of elements", "an element", [&] {
       if (in_.size() < 3) in_.fail("expected 'elm-number elm-type number-of-tags <tags> <nodes>'");
       const long long tag = in_.integer(0, "element number", 1, LLONG_MAX);
       const int type = in_.small(1, "element type");
@@ -312,8 +308,7 @@ class Parser {
       const bool other_volume =
           std::find(std::begin(kOtherVolumeTypes), std::end(kOtherVolumeTypes), type) != std::end(kOtherVolumeTypes);
       add_element(tag, type, t ? t->dim : (other_volume ? 3 : -1), ntags ? in_.small(3, "physical tag") : 0, 3 + ntags);
-    }
-    end_section();
+    });
   }
 
   Mesh assemble() {

@@ -15,30 +15,22 @@ namespace hofem {
 
 namespace {
 
-// One cap: its command-line name, unit and a way to read and write it.
+// One cap: its command-line name, unit and a way to write it.
 struct LimitField {
   const char* name;
   double unit;  // the cap holds value * unit
-  double (*get)(const InputLimits&);
   void (*set)(InputLimits&, double);
 };
 
 constexpr double kMiB = 1024.0 * 1024.0;
 const LimitField kFields[] = {
-    {"mesh-file-mb", kMiB, [](const InputLimits& l) { return double(l.mesh_file_bytes); },
-     [](InputLimits& l, double v) { l.mesh_file_bytes = static_cast<std::uint64_t>(v); }},
-    {"scene-file-kb", 1024.0, [](const InputLimits& l) { return double(l.scene_file_bytes); },
-     [](InputLimits& l, double v) { l.scene_file_bytes = static_cast<std::uint64_t>(v); }},
-    {"elements", 1.0, [](const InputLimits& l) { return double(l.elements); },
-     [](InputLimits& l, double v) { l.elements = static_cast<long long>(v); }},
-    {"nodes", 1.0, [](const InputLimits& l) { return double(l.nodes); },
-     [](InputLimits& l, double v) { l.nodes = static_cast<long long>(v); }},
-    {"order", 1.0, [](const InputLimits& l) { return double(l.order); },
-     [](InputLimits& l, double v) { l.order = static_cast<int>(v); }},
-    {"json-depth", 1.0, [](const InputLimits& l) { return double(l.json_depth); },
-     [](InputLimits& l, double v) { l.json_depth = static_cast<int>(v); }},
-    {"boundary-entries", 1.0, [](const InputLimits& l) { return double(l.boundary_entries); },
-     [](InputLimits& l, double v) { l.boundary_entries = static_cast<long long>(v); }},
+    {"mesh-file-mb", kMiB, [](InputLimits& l, double v) { l.mesh_file_bytes = static_cast<std::uint64_t>(v); }},
+    {"scene-file-kb", 1024.0, [](InputLimits& l, double v) { l.scene_file_bytes = static_cast<std::uint64_t>(v); }},
+    {"elements", 1.0, [](InputLimits& l, double v) { l.elements = static_cast<long long>(v); }},
+    {"nodes", 1.0, [](InputLimits& l, double v) { l.nodes = static_cast<long long>(v); }},
+    {"order", 1.0, [](InputLimits& l, double v) { l.order = static_cast<int>(v); }},
+    {"json-depth", 1.0, [](InputLimits& l, double v) { l.json_depth = static_cast<int>(v); }},
+    {"boundary-entries", 1.0, [](InputLimits& l, double v) { l.boundary_entries = static_cast<long long>(v); }},
 };
 
 const char* file_kind(mode_t mode) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -36,11 +37,15 @@ void merge_seam(const Mesh& box, int axis, double size, std::vector<int>& target
     }
 }
 
-// The box's mesh with merged seams (target), nodes mapped by `map` from
-// parameter to physical coordinates, and the box's face sets renamed.
+// The box's mesh with the seams on parameter coordinates `seams` merged (keys
+// rounded to 1e-9 of `size`), nodes mapped by `map` from parameter to physical
+// coordinates, and the box's face sets renamed.
 template <class Map>
-Mesh mapped_mesh(const Mesh& box, std::vector<int> target, const Map& map,
+Mesh mapped_mesh(const Mesh& box, std::initializer_list<int> seams, double size, const Map& map,
                  const std::map<std::string, std::string>& rename) {
+  std::vector<int> target(box.num_nodes());
+  std::iota(target.begin(), target.end(), 0);
+  for (const int axis : seams) merge_seam(box, axis, size, target);
   // Chains (a corner on both seams) resolve to their final node.
   for (int n = 0; n < box.num_nodes(); ++n)
     while (target[target[n]] != target[n]) target[n] = target[target[n]];
@@ -54,9 +59,7 @@ Mesh mapped_mesh(const Mesh& box, std::vector<int> target, const Map& map,
   m.nodes.resize(3, count);
   for (int n = 0; n < box.num_nodes(); ++n)
     if (target[n] == n) m.nodes.col(new_id[n]) = map(Eigen::Vector3d(box.nodes.col(n)));
-  m.elements = box.elements;
-  for (Eigen::Index e = 0; e < m.elements.cols(); ++e)
-    for (Eigen::Index i = 0; i < m.elements.rows(); ++i) m.elements(i, e) = new_id[target[m.elements(i, e)]];
+  m.elements = box.elements.unaryExpr([&](int n) { return new_id[target[n]]; });
   std::vector<int> boundary;
   for (const auto& [from, to] : rename) {
     std::vector<int> nodes;
@@ -72,12 +75,6 @@ Mesh mapped_mesh(const Mesh& box, std::vector<int> target, const Map& map,
   return m;
 }
 
-std::vector<int> identity(int n) {
-  std::vector<int> t(n);
-  std::iota(t.begin(), t.end(), 0);
-  return t;
-}
-
 }  // namespace
 
 Mesh hollow_cylinder_mesh(double r_in, double r_out, double height, int n_r, int n_theta, int n_z, CellType cell,
@@ -88,10 +85,8 @@ Mesh hollow_cylinder_mesh(double r_in, double r_out, double height, int n_r, int
         "r_out = {}, height = {}, n = {} x {} x {})",
         r_in, r_out, height, n_r, n_theta, n_z));
   const Mesh box = box_mesh(BoxSpec{{r_in, 0.0, 0.0}, {r_out, 2.0 * M_PI, height}, {n_r, n_theta, n_z}}, cell, order);
-  std::vector<int> target = identity(box.num_nodes());
-  merge_seam(box, 1, std::max(r_out, height), target);
   return mapped_mesh(
-      box, std::move(target),
+      box, {1}, std::max(r_out, height),
       [](const Eigen::Vector3d& p) { return Eigen::Vector3d(p[0] * std::cos(p[1]), p[0] * std::sin(p[1]), p[2]); },
       {{"xmin", "inner"}, {"xmax", "outer"}, {"zmin", "bottom"}, {"zmax", "top"}});
 }
@@ -105,13 +100,9 @@ Mesh hollow_torus_mesh(double major_radius, double r_in, double r_out, int n_r, 
         major_radius, r_in, r_out, n_r, n_theta, n_phi));
   const double two_pi = 2.0 * M_PI;
   const Mesh box = box_mesh(BoxSpec{{r_in, 0.0, 0.0}, {r_out, two_pi, two_pi}, {n_r, n_theta, n_phi}}, cell, order);
-  std::vector<int> target = identity(box.num_nodes());
-  merge_seam(box, 1, major_radius, target);
-  merge_seam(box, 2, major_radius, target);
-  const double R = major_radius;
   return mapped_mesh(
-      box, std::move(target),
-      [R](const Eigen::Vector3d& p) {
+      box, {1, 2}, major_radius,
+      [R = major_radius](const Eigen::Vector3d& p) {
         const double rho = R + p[0] * std::cos(p[2]);
         return Eigen::Vector3d(rho * std::cos(p[1]), rho * std::sin(p[1]), p[0] * std::sin(p[2]));
       },

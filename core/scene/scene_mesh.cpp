@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <ranges>
 #include <stdexcept>
 
 namespace hofem {
@@ -38,70 +39,50 @@ Mesh validated(Mesh mesh, const Scene& s, const char* key) {
   return mesh;
 }
 
-Mesh build_unchecked_scene_mesh(const Scene& s);
-Mesh build_unchecked_embedded_mesh(const Scene& s);
+// The mesh of `shape`: the torus, tube or box generator's of this cell and order,
+// or the .msh file as read (a read error names the scene and `key`.file).
+Mesh generated_or_read(const SceneShape& g, CellType cell, int order, const Scene& s, const char* key) {
+  if (g.torus)
+    return hollow_torus_mesh(g.torus_major_radius, g.tube_r_in, g.tube_r_out, g.cells.x(), g.cells.y(), g.cells.z(),
+                             cell, order);
+  if (g.tube)
+    return hollow_cylinder_mesh(g.tube_r_in, g.tube_r_out, g.tube_height, g.cells.x(), g.cells.y(), g.cells.z(), cell,
+                                order);
+  if (g.file.empty())
+    return box_mesh(BoxSpec{{g.box_min.x(), g.box_min.y(), g.box_min.z()},
+                            {g.box_max.x(), g.box_max.y(), g.box_max.z()},
+                            {g.cells.x(), g.cells.y(), g.cells.z()}},
+                    cell, order);
+  try {
+    return read_gmsh(g.file);
+  } catch (const std::exception& e) {
+    throw SceneError(fmt::format("{}: {}.file: {}", s.file, key, e.what()));
+  }
+}
 
 }  // namespace
 
-Mesh build_scene_mesh(const Scene& s) { return validated(build_unchecked_scene_mesh(s), s, "mesh"); }
-
-Mesh build_embedded_mesh(const Scene& s) { return validated(build_unchecked_embedded_mesh(s), s, "embedded"); }
-
-namespace {
-
-Mesh build_unchecked_scene_mesh(const Scene& s) {
-  const SceneShape& m = s.mesh;
-  if (m.torus)
-    return hollow_torus_mesh(m.torus_major_radius, m.tube_r_in, m.tube_r_out, m.cells.x(), m.cells.y(), m.cells.z(),
-                             s.cell, s.order);
-  if (m.tube)
-    return hollow_cylinder_mesh(m.tube_r_in, m.tube_r_out, m.tube_height, m.cells.x(), m.cells.y(), m.cells.z(), s.cell,
-                                s.order);
-  if (m.file.empty())
-    return box_mesh(BoxSpec{{m.box_min.x(), m.box_min.y(), m.box_min.z()},
-                            {m.box_max.x(), m.box_max.y(), m.box_max.z()},
-                            {m.cells.x(), m.cells.y(), m.cells.z()}},
-                    s.cell, s.order);
-  Mesh mesh;
-  try {
-    mesh = read_gmsh(m.file);
-  } catch (const std::exception& e) {
-    throw SceneError(fmt::format("{}: mesh.file: {}", s.file, e.what()));
+Mesh build_scene_mesh(const Scene& s) {
+  Mesh mesh = generated_or_read(s.mesh, s.cell, s.order, s, "mesh");
+  if (mesh.order != s.order) {  // a .msh file's own order
+    if (mesh.order != 1 || mesh.cell != CellType::Tetrahedron)
+      throw SceneError(fmt::format("{}: mesh.order = {}: the mesh '{}' has order {}; only P1 tetrahedra are upgraded",
+                                   s.file, s.order, s.mesh.file, mesh.order));
+    mesh = upgrade_order(mesh, s.order);
   }
-  if (mesh.order == s.order) return mesh;
-  if (mesh.order != 1 || mesh.cell != CellType::Tetrahedron)
-    throw SceneError(fmt::format("{}: mesh.order = {}: the mesh '{}' has order {}; only P1 tetrahedra are upgraded",
-                                 s.file, s.order, m.file, mesh.order));
-  return upgrade_order(mesh, s.order);
+  return validated(std::move(mesh), s, "mesh");
 }
 
-Mesh build_unchecked_embedded_mesh(const Scene& s) {
+Mesh build_embedded_mesh(const Scene& s) {
   if (!s.embedded) throw std::logic_error("build_embedded_mesh: the scene has no embedded geometry");
-  const SceneShape& g = s.embedded->shape;
-  if (g.torus)
-    return hollow_torus_mesh(g.torus_major_radius, g.tube_r_in, g.tube_r_out, g.cells.x(), g.cells.y(), g.cells.z(),
-                             CellType::Tetrahedron, 1);
-  if (g.tube)
-    return hollow_cylinder_mesh(g.tube_r_in, g.tube_r_out, g.tube_height, g.cells.x(), g.cells.y(), g.cells.z(),
-                                CellType::Tetrahedron, 1);
-  if (g.file.empty())
-    return box_tet_mesh(BoxSpec{{g.box_min.x(), g.box_min.y(), g.box_min.z()},
-                                {g.box_max.x(), g.box_max.y(), g.box_max.z()},
-                                {g.cells.x(), g.cells.y(), g.cells.z()}});
-  Mesh mesh;
-  try {
-    mesh = read_gmsh(g.file);
-  } catch (const std::exception& e) {
-    throw SceneError(fmt::format("{}: embedded.file: {}", s.file, e.what()));
-  }
+  // Generators: Tet4 (box_mesh of order 1 is box_tet_mesh).
+  Mesh mesh = generated_or_read(s.embedded->shape, CellType::Tetrahedron, 1, s, "embedded");
   if (mesh.cell != CellType::Tetrahedron)
     throw SceneError(
         fmt::format("{}: embedded.file: '{}' is not a tetrahedral mesh (the embedded geometry must be tetrahedra)",
-                    s.file, g.file));
-  return mesh;
+                    s.file, s.embedded->shape.file));
+  return validated(std::move(mesh), s, "embedded");
 }
-
-}  // namespace
 
 std::vector<int> boundary_nodes(const Scene& s, const Mesh& mesh, size_t index) {
   const SceneBoundary& b = s.boundary.at(index);
@@ -109,10 +90,8 @@ std::vector<int> boundary_nodes(const Scene& s, const Mesh& mesh, size_t index) 
   if (!b.set.empty()) {
     const auto it = mesh.node_sets.find(b.set);
     if (it == mesh.node_sets.end()) {
-      std::vector<std::string> names;
-      for (const auto& [k, v] : mesh.node_sets) names.push_back(k);
       throw SceneError(fmt::format("{}: boundary[{}].nodes = '{}' is not a node set of the mesh (valid: {})", s.file,
-                                   index, b.set, fmt::join(names, ", ")));
+                                   index, b.set, fmt::join(std::views::keys(mesh.node_sets), ", ")));
     }
     nodes = it->second;
   } else {

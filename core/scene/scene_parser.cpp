@@ -203,19 +203,6 @@ void apply_override(json& root, const std::string& item, const std::string& orig
   *at = std::move(value);
 }
 
-Scene parse_validated(const json& j, const std::string& origin);
-
-}  // namespace
-
-Scene parse_scene(const std::string& text, const std::string& origin, const SceneOverrides& overrides) {
-  check_nesting(text, origin);
-  json j = parse_json(text, origin);
-  for (const std::string& o : overrides) apply_override(j, o, origin);
-  return parse_validated(j, origin);
-}
-
-namespace {
-
 Scene parse_validated(const json& j, const std::string& origin) {
   Scene s;
   s.file = origin;
@@ -305,6 +292,13 @@ Scene parse_validated(const json& j, const std::string& origin) {
 }
 
 }  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& origin, const SceneOverrides& overrides) {
+  check_nesting(text, origin);
+  json j = parse_json(text, origin);
+  for (const std::string& o : overrides) apply_override(j, o, origin);
+  return parse_validated(j, origin);
+}
 
 Scene read_scene(const std::string& path, const SceneOverrides& overrides) {
   return parse_scene(read_json_file(path, "the scene file"), path == "-" ? "<stdin>" : path, overrides);

@@ -142,44 +142,6 @@ void clear_earlier_output(const std::string& out_dir) {
       throw SceneError(fmt::format("cannot remove '{}' of an earlier run: {}", entry.path().string(), ec.message()));
 }
 
-SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const SceneRunOptions& options, bool writer,
-                            Clock::time_point t_start);
-
-}  // namespace
-
-SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const SceneRunOptions& options) {
-  const auto t_start = Clock::now();
-  int rank = 0;
-  if (options.distributed) {
-    ensure_hypre();
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  }
-  const bool writer = rank == 0;  // distributed: one rank writes
-  if (out_dir.empty() && options.write_frames)
-    throw SceneError(fmt::format("{}: frames need an output directory", s.file));
-  // No output directory: nothing is written (a study's run keeps what it needs in memory).
-  const bool files = writer && !out_dir.empty();
-  std::error_code ec;
-  if (!out_dir.empty()) std::filesystem::create_directories(out_dir, ec);
-  if (ec) throw SceneError(fmt::format("{}: cannot create the output directory '{}': {}", s.file, out_dir, ec.message()));
-  if (files) clear_earlier_output(out_dir);
-  try {
-    return run_scene_in(s, out_dir, options, writer, t_start);
-  } catch (const std::exception& e) {
-    // A run that stops on an error still leaves a stats.json, which says so and why.
-    if (files)
-      write_file_atomically((std::filesystem::path(out_dir) / "stats.json").string(),
-                            json{{"scene", s.name}, {"file", s.file}, {"status", "failed"}, {"ok", false},
-                                 {"message", e.what()},
-                                 {"wall_seconds", std::chrono::duration<double>(Clock::now() - t_start).count()}}
-                                    .dump(1) +
-                                "\n");
-    throw;
-  }
-}
-
-namespace {
-
 // A distributed run's fields live on the ranks' pieces of the mesh: gathered
 // to the writer in global order (one VTU per frame, one stats file).
 Eigen::VectorXd nodal(const DistributedMesh* d, const Eigen::VectorXd& v) { return d ? d->gather_nodal(v) : v; }
@@ -228,13 +190,12 @@ json static_stats_json(const StaticReport& r) {
 void SceneRun::run_static(std::vector<PrescribedMotion> motions) {
   std::vector<DirichletCondition> dirichlet;
   for (PrescribedMotion& m : motions) {
-    if (!m.moves()) {
-      dirichlet.push_back({m.nodes, nullptr});
-      continue;
-    }
+    dirichlet.push_back({m.nodes, nullptr});  // a fixed motion: zero
     // The motion's final position (its "until" time) is the displacement.
-    const auto position = m.position;
-    dirichlet.push_back({m.nodes, [position](const Eigen::Vector3d& X) { return Eigen::Vector3d(position(X, 1e300) - X); }});
+    if (m.moves())
+      dirichlet.back().displacement = [position = m.position](const Eigen::Vector3d& X) {
+        return Eigen::Vector3d(position(X, 1e300) - X);
+      };
   }
   StaticOptions so;
   static_cast<ProblemOptions&>(so) = s.dynamics;  // what both problems share: solver, Newton, quadrature
@@ -393,5 +354,36 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
 }
 
 }  // namespace
+
+SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const SceneRunOptions& options) {
+  const auto t_start = Clock::now();
+  int rank = 0;
+  if (options.distributed) {
+    ensure_hypre();
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  }
+  const bool writer = rank == 0;  // distributed: one rank writes
+  if (out_dir.empty() && options.write_frames)
+    throw SceneError(fmt::format("{}: frames need an output directory", s.file));
+  // No output directory: nothing is written (a study's run keeps what it needs in memory).
+  const bool files = writer && !out_dir.empty();
+  std::error_code ec;
+  if (!out_dir.empty()) std::filesystem::create_directories(out_dir, ec);
+  if (ec) throw SceneError(fmt::format("{}: cannot create the output directory '{}': {}", s.file, out_dir, ec.message()));
+  if (files) clear_earlier_output(out_dir);
+  try {
+    return run_scene_in(s, out_dir, options, writer, t_start);
+  } catch (const std::exception& e) {
+    // A run that stops on an error still leaves a stats.json, which says so and why.
+    if (files)
+      write_file_atomically((std::filesystem::path(out_dir) / "stats.json").string(),
+                            json{{"scene", s.name}, {"file", s.file}, {"status", "failed"}, {"ok", false},
+                                 {"message", e.what()},
+                                 {"wall_seconds", std::chrono::duration<double>(Clock::now() - t_start).count()}}
+                                    .dump(1) +
+                                "\n");
+    throw;
+  }
+}
 
 }  // namespace hofem
