@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <optional>
 
@@ -72,7 +73,7 @@ int parse_int(std::string_view text, std::string_view origin, int line) {
 RawRule parse_raw(std::string_view text, std::string_view origin) {
   RawRule r;
   enum class List { None, Positions, Weights } list = List::None;
-  bool saw_weights = false, saw_positions = false, saw_orbits = false;
+  bool saw_positions = false, saw_orbits = false;
   int line_no = 0;
   size_t pos = 0;
   while (pos <= text.size()) {
@@ -129,7 +130,6 @@ RawRule parse_raw(std::string_view text, std::string_view origin) {
     } else if (key == "weights") {
       if (!value.empty()) fail(origin, line_no, "weights: the list must start on the next line");
       list = List::Weights;
-      saw_weights = true;
     } else {
       fail(origin, line_no, fmt::format("unknown key '{}' (valid: reference, region, dim, degree, quality, accuracy, orbits, positions, weights)", key));
     }
@@ -138,7 +138,6 @@ RawRule parse_raw(std::string_view text, std::string_view origin) {
   if (r.degree < 0) fail(origin, line_no, "missing key 'degree'");
   if (!saw_orbits) fail(origin, line_no, "missing key 'orbits'");
   if (!saw_positions) fail(origin, line_no, "missing key 'positions'");
-  (void)saw_weights;
   return r;
 }
 
@@ -149,6 +148,15 @@ struct OrbitType {
   std::function<std::vector<Bary>(const Real*)> expand;
 };
 
+// The points of a triangle orbit with parameters (a, b): the barycentric triple
+// (a, b, 1 - a - b) under each of the given permutations.
+std::vector<Bary> permuted(const Real* p, std::initializer_list<std::array<int, 3>> permutations) {
+  const Real v[3] = {p[0], p[1], 1 - p[0] - p[1]};
+  std::vector<Bary> out;
+  for (const auto& s : permutations) out.push_back({v[s[0]], v[s[1]], v[s[2]]});
+  return out;
+}
+
 const std::vector<OrbitType>& triangle_orbits() {
   static const std::vector<OrbitType> types = {
       {"S3", 0, [](const Real*) { return std::vector<Bary>{{Real(1) / 3, Real(1) / 3, Real(1) / 3}}; }},
@@ -158,30 +166,11 @@ const std::vector<OrbitType>& triangle_orbits() {
          return std::vector<Bary>{{a, a, c}, {a, c, a}, {c, a, a}};
        }},
       {"S111", 2,
-       [](const Real* p) {
-         const Real a = p[0], b = p[1], c = 1 - a - b;
-         return std::vector<Bary>{{a, b, c}, {a, c, b}, {c, a, b}, {b, a, c}, {b, c, a}, {c, b, a}};
-       }},
-      {"A3", 2,
-       [](const Real* p) {
-         const Real a = p[0], b = p[1], c = 1 - a - b;
-         return std::vector<Bary>{{a, b, c}, {b, c, a}, {c, a, b}};
-       }},
-      {"M12", 2,
-       [](const Real* p) {
-         const Real a = p[0], b = p[1], c = 1 - a - b;
-         return std::vector<Bary>{{a, b, c}, {b, a, c}};
-       }},
-      {"M13", 2,
-       [](const Real* p) {
-         const Real a = p[0], b = p[1], c = 1 - a - b;
-         return std::vector<Bary>{{a, b, c}, {c, b, a}};
-       }},
-      {"M23", 2,
-       [](const Real* p) {
-         const Real a = p[0], b = p[1], c = 1 - a - b;
-         return std::vector<Bary>{{a, b, c}, {a, c, b}};
-       }},
+       [](const Real* p) { return permuted(p, {{0, 1, 2}, {0, 2, 1}, {2, 0, 1}, {1, 0, 2}, {1, 2, 0}, {2, 1, 0}}); }},
+      {"A3", 2, [](const Real* p) { return permuted(p, {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}}); }},
+      {"M12", 2, [](const Real* p) { return permuted(p, {{0, 1, 2}, {1, 0, 2}}); }},
+      {"M13", 2, [](const Real* p) { return permuted(p, {{0, 1, 2}, {2, 1, 0}}); }},
+      {"M23", 2, [](const Real* p) { return permuted(p, {{0, 1, 2}, {0, 2, 1}}); }},
       {"I", 3, [](const Real* p) { return std::vector<Bary>{{p[0], p[1], p[2]}}; }},
   };
   return types;
