@@ -72,7 +72,7 @@ int parse_int(std::string_view text, std::string_view origin, int line) {
 
 RawRule parse_raw(std::string_view text, std::string_view origin) {
   RawRule r;
-  enum class List { None, Positions, Weights } list = List::None;
+  std::vector<Real>* list = nullptr;  // where list items go: r.positions, r.weights or nowhere
   bool saw_positions = false, saw_orbits = false;
   int line_no = 0;
   size_t pos = 0;
@@ -89,16 +89,15 @@ RawRule parse_raw(std::string_view text, std::string_view origin) {
       continue;
     }
     if (line.front() == '-') {
-      if (list == List::None) fail(origin, line_no, "list item outside 'positions:' or 'weights:'");
-      const Real v = parse_real(line.substr(1), origin, line_no);
-      (list == List::Positions ? r.positions : r.weights).push_back(v);
+      if (!list) fail(origin, line_no, "list item outside 'positions:' or 'weights:'");
+      list->push_back(parse_real(line.substr(1), origin, line_no));
       continue;
     }
     const size_t colon = line.find(':');
     if (colon == std::string_view::npos) fail(origin, line_no, fmt::format("expected 'key: value', found '{}'", line));
     const std::string_view key = trim(line.substr(0, colon));
     const std::string_view value = trim(line.substr(colon + 1));
-    list = List::None;
+    list = nullptr;
     if (key == "reference") {
       r.reference = std::string(unquote(value));
     } else if (key == "region") {
@@ -125,11 +124,11 @@ RawRule parse_raw(std::string_view text, std::string_view origin) {
       saw_orbits = true;
     } else if (key == "positions") {
       if (!value.empty()) fail(origin, line_no, "positions: the list must start on the next line");
-      list = List::Positions;
+      list = &r.positions;
       saw_positions = true;
     } else if (key == "weights") {
       if (!value.empty()) fail(origin, line_no, "weights: the list must start on the next line");
-      list = List::Weights;
+      list = &r.weights;
     } else {
       fail(origin, line_no, fmt::format("unknown key '{}' (valid: reference, region, dim, degree, quality, accuracy, orbits, positions, weights)", key));
     }
