@@ -62,12 +62,7 @@ ElementQuadrature make_element_quadrature(CellType cell, int order, Eigen::Matri
   q.rule.source = "per-element rule (finite cell method)";
   q.rule.points = std::move(points);
   q.rule.weights = std::move(weights);
-  if (q.rule.size() > 0) {
-    q.tabulation = tabulate(lagrange_basis(cell, order), q.rule);
-  } else {
-    q.tabulation.num_basis = lagrange_basis(cell, order).size();
-    q.tabulation.dim = dimension(cell);
-  }
+  q.tabulation = tabulate(lagrange_basis(cell, order), q.rule);  // no points: sizes only
   return q;
 }
 

@@ -69,13 +69,8 @@ void Hex20Basis::gradients(const Eigen::Ref<const Eigen::VectorXd>& x, Eigen::Re
     } else {
       double f[3], df[3];
       for (int c = 0; c < 3; ++c) {
-        if (n[c] == 0.0) {
-          f[c] = 1 - x[c] * x[c];
-          df[c] = -2 * x[c];
-        } else {
-          f[c] = 1 + x[c] * n[c];
-          df[c] = n[c];
-        }
+        f[c] = n[c] == 0.0 ? 1 - x[c] * x[c] : 1 + x[c] * n[c];
+        df[c] = n[c] == 0.0 ? -2 * x[c] : n[c];
       }
       for (int c = 0; c < 3; ++c) G(i, c) = 0.25 * df[c] * f[(c + 1) % 3] * f[(c + 2) % 3];
     }

@@ -46,29 +46,23 @@ std::vector<std::array<int, 3>> tetrahedron_lattice(int p) {
 
 Eigen::MatrixXd simplex_lagrange_nodes(CellType cell, int p) {
   if (p < 1) throw std::invalid_argument(fmt::format("Lagrange order must be >= 1, got {}", p));
-  Eigen::MatrixXd x;
+  // Lattice points (in units of 1/p) as node coordinates, one column each.
+  auto from_lattice = [p](const auto& lattice, int dim) {
+    Eigen::MatrixXd x(dim, static_cast<Eigen::Index>(lattice.size()));
+    for (size_t n = 0; n < lattice.size(); ++n)
+      for (int c = 0; c < dim; ++c) x(c, n) = static_cast<double>(lattice[n][c]) / p;
+    return x;
+  };
   switch (cell) {
     case CellType::Segment: {
-      x.resize(1, p + 1);
+      Eigen::MatrixXd x(1, p + 1);
       x(0, 0) = -1.0;
       x(0, 1) = 1.0;
       for (int i = 1; i < p; ++i) x(0, i + 1) = -1.0 + 2.0 * i / p;
       return x;
     }
-    case CellType::Triangle: {
-      const auto l = triangle_lattice(p);
-      x.resize(2, static_cast<Eigen::Index>(l.size()));
-      for (size_t n = 0; n < l.size(); ++n)
-        for (int c = 0; c < 2; ++c) x(c, n) = static_cast<double>(l[n][c]) / p;
-      return x;
-    }
-    case CellType::Tetrahedron: {
-      const auto l = tetrahedron_lattice(p);
-      x.resize(3, static_cast<Eigen::Index>(l.size()));
-      for (size_t n = 0; n < l.size(); ++n)
-        for (int c = 0; c < 3; ++c) x(c, n) = static_cast<double>(l[n][c]) / p;
-      return x;
-    }
+    case CellType::Triangle: return from_lattice(triangle_lattice(p), 2);
+    case CellType::Tetrahedron: return from_lattice(tetrahedron_lattice(p), 3);
     default: throw std::invalid_argument(fmt::format("simplex_lagrange_nodes: {} is not a simplex", name(cell)));
   }
 }

@@ -18,24 +18,6 @@ double condition_number(const Eigen::MatrixXd& A) {
   return s(0) / s(s.size() - 1);
 }
 
-std::vector<std::array<int, 3>> total_degree_exponents(int dim, int p) {
-  std::vector<std::array<int, 3>> e;
-  for (int a = 0; a <= p; ++a) {
-    if (dim == 1) {
-      e.push_back({a, 0, 0});
-      continue;
-    }
-    for (int b = 0; a + b <= p; ++b) {
-      if (dim == 2) {
-        e.push_back({a, b, 0});
-        continue;
-      }
-      for (int c = 0; a + b + c <= p; ++c) e.push_back({a, b, c});
-    }
-  }
-  return e;
-}
-
 }  // namespace
 
 SimplexLagrangeBasis::SimplexLagrangeBasis(CellType cell, int order)

@@ -41,6 +41,14 @@ void homogenised_jacobi(int n, int alpha, double X, const double* dX, double T, 
 
 }  // namespace
 
+std::vector<std::array<int, 3>> total_degree_exponents(int dim, int p) {
+  std::vector<std::array<int, 3>> e;
+  for (int a = 0; a <= p; ++a)
+    for (int b = 0; b <= (dim > 1 ? p - a : 0); ++b)
+      for (int c = 0; c <= (dim > 2 ? p - a - b : 0); ++c) e.push_back({a, b, c});
+  return e;
+}
+
 OrthonormalSimplexBasis::OrthonormalSimplexBasis(CellType cell, int order) : cell_(cell), order_(order) {
   if (order < 0) throw std::invalid_argument(fmt::format("basis order must be >= 0, got {}", order));
   if (cell != CellType::Segment && cell != CellType::Triangle && cell != CellType::Tetrahedron)
@@ -52,24 +60,12 @@ OrthonormalSimplexBasis::OrthonormalSimplexBasis(CellType cell, int order) : cel
   //   triangle: ||psi_ij||^2  = 2/(2i+1) * 2/(2i+2j+2)                       on the biunit
   //   tet:      ||psi_ijk||^2 = 2/(2i+1) * 2/(2i+2j+2) * 2/(2i+2j+2k+3)      triangle/tet,
   // and the unit simplex has 1/4 (triangle) or 1/8 (tet) of the biunit measure.
-  for (int i = 0; i <= order; ++i) {
-    if (dim_ == 1) {
-      index_.push_back({i, 0, 0});
-      scale_.push_back(std::sqrt((2.0 * i + 1.0) / 2.0));
-      continue;
-    }
-    for (int j = 0; i + j <= order; ++j) {
-      const double nij = 2.0 / (2 * i + 1) * 2.0 / (2 * i + 2 * j + 2);
-      if (dim_ == 2) {
-        index_.push_back({i, j, 0});
-        scale_.push_back(1.0 / std::sqrt(nij / 4.0));
-        continue;
-      }
-      for (int k = 0; i + j + k <= order; ++k) {
-        index_.push_back({i, j, k});
-        scale_.push_back(1.0 / std::sqrt(nij * 2.0 / (2 * i + 2 * j + 2 * k + 3) / 8.0));
-      }
-    }
+  index_ = total_degree_exponents(dim_, order);
+  for (const auto& [i, j, k] : index_) {
+    const double nij = 2.0 / (2 * i + 1) * 2.0 / (2 * i + 2 * j + 2);
+    if (dim_ == 1) scale_.push_back(std::sqrt((2.0 * i + 1.0) / 2.0));
+    else if (dim_ == 2) scale_.push_back(1.0 / std::sqrt(nij / 4.0));
+    else scale_.push_back(1.0 / std::sqrt(nij * 2.0 / (2 * i + 2 * j + 2 * k + 3) / 8.0));
   }
 }
 

@@ -19,6 +19,11 @@
 
 namespace hofem {
 
+/// Exponents (a, b, c) of the monomials of total degree <= p in dim (1 to 3)
+/// variables (the unused ones 0), a outermost, then b, then c: also the order of
+/// the orthonormal basis functions' indices (i, j, k) below.
+std::vector<std::array<int, 3>> total_degree_exponents(int dim, int p);
+
 class OrthonormalSimplexBasis {
  public:
   /// cell: Segment ([-1,1]), Triangle or Tetrahedron (unit simplex); order >= 0.

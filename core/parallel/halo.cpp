@@ -1,5 +1,7 @@
 #include "parallel/halo.hpp"
 
+#include "parallel/collectives.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -63,9 +65,8 @@ Halo::Halo(MPI_Comm comm, const std::vector<std::int64_t>& ids, const std::vecto
     }
   }
   // Every rank learns whether the ownership was inconsistent anywhere, so none waits in a later exchange.
-  int bad = missing.empty() ? 0 : 1, any = 0;
-  MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_LOR, comm_);
-  if (any) throw std::logic_error("Halo: inconsistent ownership: " + (missing.empty() ? std::string("on another rank") : missing));
+  if (any_rank(!missing.empty(), comm_))
+    throw std::logic_error("Halo: inconsistent ownership: " + (missing.empty() ? std::string("on another rank") : missing));
   send_.resize(neighbour_.size());
   recv_.resize(neighbour_.size());
 }
@@ -115,9 +116,7 @@ double Halo::dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const {
   for (int i = 0; i < size(); ++i)
     if (owned_[i])
       for (int c = 0; c < block_; ++c) local += a[i * block_ + c] * b[i * block_ + c];
-  double total = 0.0;
-  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, comm_);
-  return total;
+  return sum_over_ranks(local, comm_);
 }
 
 double Halo::norm(const Eigen::VectorXd& a) const { return std::sqrt(dot(a, a)); }

@@ -65,34 +65,26 @@ double interior_margin(CellType cell, const Eigen::Ref<const Eigen::VectorXd>& x
 }
 
 Eigen::MatrixXd reference_vertices(CellType cell) {
-  Eigen::MatrixXd v;
   switch (cell) {
-    case CellType::Segment:
-      v.resize(1, 2);
-      v << -1, 1;
-      return v;
+    case CellType::Segment: return (Eigen::MatrixXd(1, 2) << -1, 1).finished();
     case CellType::Triangle:
-      v.resize(2, 3);
-      v << 0, 1, 0,  //
-          0, 0, 1;
-      return v;
+      return (Eigen::MatrixXd(2, 3) << 0, 1, 0,  //
+              0, 0, 1)
+          .finished();
     case CellType::Tetrahedron:
-      v.resize(3, 4);
-      v << 0, 1, 0, 0,  //
-          0, 0, 1, 0,   //
-          0, 0, 0, 1;
-      return v;
+      return (Eigen::MatrixXd(3, 4) << 0, 1, 0, 0,  //
+              0, 0, 1, 0,                           //
+              0, 0, 0, 1)
+          .finished();
     case CellType::Quadrilateral:
-      v.resize(2, 4);
-      v << -1, 1, 1, -1,  //
-          -1, -1, 1, 1;
-      return v;
+      return (Eigen::MatrixXd(2, 4) << -1, 1, 1, -1,  //
+              -1, -1, 1, 1)
+          .finished();
     case CellType::Hexahedron:
-      v.resize(3, 8);
-      v << -1, 1, 1, -1, -1, 1, 1, -1,  //
-          -1, -1, 1, 1, -1, -1, 1, 1,   //
-          -1, -1, -1, -1, 1, 1, 1, 1;
-      return v;
+      return (Eigen::MatrixXd(3, 8) << -1, 1, 1, -1, -1, 1, 1, -1,  //
+              -1, -1, 1, 1, -1, -1, 1, 1,                           //
+              -1, -1, -1, -1, 1, 1, 1, 1)
+          .finished();
   }
   throw std::logic_error("reference_vertices: unknown cell");
 }

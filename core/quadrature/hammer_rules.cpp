@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -23,9 +24,7 @@ QuadratureRule from_barycentric(CellType cell, int degree, const char* source,
   q.family = RuleFamily::Hammer;
   q.source = source;
   q.id = fmt::format("hammer-{}", bary.size());
-  bool positive = true;
-  for (double x : w) positive = positive && x > 0;
-  q.claimed_quality = positive ? "PI" : "NI";
+  q.claimed_quality = std::ranges::all_of(w, [](double x) { return x > 0; }) ? "PI" : "NI";
   const int n = static_cast<int>(bary.size());
   q.points.resize(NB - 1, n);
   q.weights.resize(n);

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <optional>
 
@@ -71,8 +72,8 @@ int parse_int(std::string_view text, std::string_view origin, int line) {
 
 RawRule parse_raw(std::string_view text, std::string_view origin) {
   RawRule r;
-  enum class List { None, Positions, Weights } list = List::None;
-  bool saw_weights = false, saw_positions = false, saw_orbits = false;
+  std::vector<Real>* list = nullptr;  // where list items go: r.positions, r.weights or nowhere
+  bool saw_positions = false, saw_orbits = false;
   int line_no = 0;
   size_t pos = 0;
   while (pos <= text.size()) {
@@ -88,16 +89,15 @@ RawRule parse_raw(std::string_view text, std::string_view origin) {
       continue;
     }
     if (line.front() == '-') {
-      if (list == List::None) fail(origin, line_no, "list item outside 'positions:' or 'weights:'");
-      const Real v = parse_real(line.substr(1), origin, line_no);
-      (list == List::Positions ? r.positions : r.weights).push_back(v);
+      if (!list) fail(origin, line_no, "list item outside 'positions:' or 'weights:'");
+      list->push_back(parse_real(line.substr(1), origin, line_no));
       continue;
     }
     const size_t colon = line.find(':');
     if (colon == std::string_view::npos) fail(origin, line_no, fmt::format("expected 'key: value', found '{}'", line));
     const std::string_view key = trim(line.substr(0, colon));
     const std::string_view value = trim(line.substr(colon + 1));
-    list = List::None;
+    list = nullptr;
     if (key == "reference") {
       r.reference = std::string(unquote(value));
     } else if (key == "region") {
@@ -124,12 +124,11 @@ RawRule parse_raw(std::string_view text, std::string_view origin) {
       saw_orbits = true;
     } else if (key == "positions") {
       if (!value.empty()) fail(origin, line_no, "positions: the list must start on the next line");
-      list = List::Positions;
+      list = &r.positions;
       saw_positions = true;
     } else if (key == "weights") {
       if (!value.empty()) fail(origin, line_no, "weights: the list must start on the next line");
-      list = List::Weights;
-      saw_weights = true;
+      list = &r.weights;
     } else {
       fail(origin, line_no, fmt::format("unknown key '{}' (valid: reference, region, dim, degree, quality, accuracy, orbits, positions, weights)", key));
     }
@@ -138,7 +137,6 @@ RawRule parse_raw(std::string_view text, std::string_view origin) {
   if (r.degree < 0) fail(origin, line_no, "missing key 'degree'");
   if (!saw_orbits) fail(origin, line_no, "missing key 'orbits'");
   if (!saw_positions) fail(origin, line_no, "missing key 'positions'");
-  (void)saw_weights;
   return r;
 }
 
@@ -149,6 +147,15 @@ struct OrbitType {
   std::function<std::vector<Bary>(const Real*)> expand;
 };
 
+// The points of a triangle orbit with parameters (a, b): the barycentric triple
+// (a, b, 1 - a - b) under each of the given permutations.
+std::vector<Bary> permuted(const Real* p, std::initializer_list<std::array<int, 3>> permutations) {
+  const Real v[3] = {p[0], p[1], 1 - p[0] - p[1]};
+  std::vector<Bary> out;
+  for (const auto& s : permutations) out.push_back({v[s[0]], v[s[1]], v[s[2]]});
+  return out;
+}
+
 const std::vector<OrbitType>& triangle_orbits() {
   static const std::vector<OrbitType> types = {
       {"S3", 0, [](const Real*) { return std::vector<Bary>{{Real(1) / 3, Real(1) / 3, Real(1) / 3}}; }},
@@ -158,30 +165,11 @@ const std::vector<OrbitType>& triangle_orbits() {
          return std::vector<Bary>{{a, a, c}, {a, c, a}, {c, a, a}};
        }},
       {"S111", 2,
-       [](const Real* p) {
-         const Real a = p[0], b = p[1], c = 1 - a - b;
-         return std::vector<Bary>{{a, b, c}, {a, c, b}, {c, a, b}, {b, a, c}, {b, c, a}, {c, b, a}};
-       }},
-      {"A3", 2,
-       [](const Real* p) {
-         const Real a = p[0], b = p[1], c = 1 - a - b;
-         return std::vector<Bary>{{a, b, c}, {b, c, a}, {c, a, b}};
-       }},
-      {"M12", 2,
-       [](const Real* p) {
-         const Real a = p[0], b = p[1], c = 1 - a - b;
-         return std::vector<Bary>{{a, b, c}, {b, a, c}};
-       }},
-      {"M13", 2,
-       [](const Real* p) {
-         const Real a = p[0], b = p[1], c = 1 - a - b;
-         return std::vector<Bary>{{a, b, c}, {c, b, a}};
-       }},
-      {"M23", 2,
-       [](const Real* p) {
-         const Real a = p[0], b = p[1], c = 1 - a - b;
-         return std::vector<Bary>{{a, b, c}, {a, c, b}};
-       }},
+       [](const Real* p) { return permuted(p, {{0, 1, 2}, {0, 2, 1}, {2, 0, 1}, {1, 0, 2}, {1, 2, 0}, {2, 1, 0}}); }},
+      {"A3", 2, [](const Real* p) { return permuted(p, {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}}); }},
+      {"M12", 2, [](const Real* p) { return permuted(p, {{0, 1, 2}, {1, 0, 2}}); }},
+      {"M13", 2, [](const Real* p) { return permuted(p, {{0, 1, 2}, {2, 1, 0}}); }},
+      {"M23", 2, [](const Real* p) { return permuted(p, {{0, 1, 2}, {0, 2, 1}}); }},
       {"I", 3, [](const Real* p) { return std::vector<Bary>{{p[0], p[1], p[2]}}; }},
   };
   return types;
