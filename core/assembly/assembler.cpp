@@ -140,8 +140,11 @@ void scatter_hessian(const SparsityPattern& pattern, const Mesh& mesh, int e, co
     for (int b = 0; b < 3; ++b) {
       double* column = values + static_cast<std::ptrdiff_t>(b) * stride;
       for (int i = 0; i < n; ++i)
-        if (const int pos = mj[i]; pos >= 0)
-          for (int a = 0; a < 3; ++a) column[pos + a] += ws.hessian_entry(i, a, j, b);
+        if (const int pos = mj[i]; pos >= 0) {
+          column[pos] += ws.hessian_entry(i, 0, j, b);
+          column[pos + 1] += ws.hessian_entry(i, 1, j, b);
+          column[pos + 2] += ws.hessian_entry(i, 2, j, b);
+        }
     }
   }
 }
