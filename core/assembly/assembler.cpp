@@ -10,7 +10,6 @@
 #include <exception>
 #include <limits>
 #include <mutex>
-#include <numeric>
 #include <type_traits>
 
 namespace hofem {
@@ -30,9 +29,8 @@ void dispatch_nodes(int n, F&& f) {
   }
 }
 
-// Runs body(ws, e) for every element (ws: the thread's ElementWorkspace, of
-// dispatch_nodes' node count), colour by colour, in parallel within a colour.
-// The first exception (e.g. an inverted element) is rethrown after the
+// Runs body(ws, e) for every element, colour by colour, in parallel within a
+// colour. The first exception (e.g. an inverted element) is rethrown after the
 // parallel region with the element index added.
 // Below this many elements a parallel region costs more than it saves (thread
 // wake-up is ~10-100 us, an element ~1-50 us), and idle OpenMP threads spinning
@@ -50,30 +48,28 @@ constexpr int kMinParallelElements = 512;
   }
 }
 
-template <class Body>
+template <int N, class Body>
 void for_each_element(const Mesh& mesh, const SparsityPattern& pattern, Body&& body) {
   std::exception_ptr error;
   int error_element = -1;
   std::mutex error_mutex;
-  dispatch_nodes(mesh.nodes_per_element(), [&](auto nodes) {
 #pragma omp parallel if (mesh.num_elements() >= kMinParallelElements)
-    {
-      ElementWorkspace<decltype(nodes)::value> ws(mesh.nodes_per_element());
-      for (const auto& colour : pattern.colours()) {
-        const int count = static_cast<int>(colour.size());
+  {
+    ElementWorkspace<N> ws(mesh.nodes_per_element());
+    for (const auto& colour : pattern.colours()) {
+      const int count = static_cast<int>(colour.size());
 #pragma omp for schedule(static)
-        for (int k = 0; k < count; ++k) {
-          const int e = colour[k];
-          try {
-            body(ws, e);
-          } catch (...) {
-            std::lock_guard<std::mutex> lock(error_mutex);
-            if (!error || e < error_element) error = std::current_exception(), error_element = e;
-          }
+      for (int k = 0; k < count; ++k) {
+        const int e = colour[k];
+        try {
+          body(ws, e);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(error_mutex);
+          if (!error || e < error_element) error = std::current_exception(), error_element = e;
         }
       }
     }
-  });
+  }
   if (error) rethrow_with_element(error, error_element);
 }
 
@@ -89,37 +85,35 @@ void for_each_element(const Mesh& mesh, const SparsityPattern& pattern, Body&& b
 // (elements of one colour share none: every colour swept the whole value
 // array). An element with nodes of two owners is computed by both (the layer
 // along a range boundary). Errors as for_each_element.
-template <class Body>
+template <int N, class Body>
 void for_each_element_by_columns(const Mesh& mesh, const SparsityPattern& pattern, Body&& body) {
   std::exception_ptr error;
   int error_element = -1;
   std::mutex error_mutex;
   const int n = mesh.nodes_per_element(), ne = mesh.num_elements();
-  dispatch_nodes(n, [&](auto nodes) {
 #pragma omp parallel if (ne >= kMinParallelElements)
-    {
-      ElementWorkspace<decltype(nodes)::value> ws(n);
-      const int t = omp_get_thread_num(), T = omp_get_num_threads();
-      const int begin = static_cast<int>(static_cast<std::int64_t>(ne) * t / T);
-      const int end = static_cast<int>(static_cast<std::int64_t>(ne) * (t + 1) / T);
-      auto owns = [&](int node) {
-        const int f = pattern.first_element(node);
-        return f >= begin && f < end;
-      };
-      for (int e = begin; e < ne; ++e) {
-        bool mine = false;
-        for (int i = 0; i < n && !mine; ++i) mine = owns(mesh.elements(i, e));
-        if (!mine) continue;
-        try {
-          body(ws, e, owns);
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(error_mutex);
-          if (!error || e < error_element) error = std::current_exception(), error_element = e;
-          break;  // later elements of this range would fail or be discarded alike
-        }
+  {
+    ElementWorkspace<N> ws(n);
+    const int t = omp_get_thread_num(), T = omp_get_num_threads();
+    const int begin = static_cast<int>(static_cast<std::int64_t>(ne) * t / T);
+    const int end = static_cast<int>(static_cast<std::int64_t>(ne) * (t + 1) / T);
+    auto owns = [&](int node) {
+      const int f = pattern.first_element(node);
+      return f >= begin && f < end;
+    };
+    for (int e = begin; e < ne; ++e) {
+      bool mine = false;
+      for (int i = 0; i < n && !mine; ++i) mine = owns(mesh.elements(i, e));
+      if (!mine) continue;
+      try {
+        body(ws, e, owns);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error || e < error_element) error = std::current_exception(), error_element = e;
+        break;  // later elements of this range would fail or be discarded alike
       }
     }
-  });
+  }
   if (error) rethrow_with_element(error, error_element);
 }
 
@@ -227,28 +221,35 @@ void check_size(const Eigen::VectorXd& x, const Mesh& mesh) {
 
 double Assembler::energy(const Material& mat, const Eigen::VectorXd& x) const {
   const Eigen::VectorXd per_element = element_energies(mat, x);
-  // std::accumulate adds in order, a sequential sum: reproducible whatever the thread count.
-  return std::accumulate(per_element.begin(), per_element.end(), 0.0);
+  double total = 0.0;  // sequential sum: reproducible whatever the thread count
+  for (double v : per_element) total += v;
+  return total;
 }
 
 Eigen::VectorXd Assembler::element_energies(const Material& mat, const Eigen::VectorXd& x) const {
   check_size(x, mesh_);
   Eigen::VectorXd per_element(mesh_.num_elements());
-  for_each_element(mesh_, *pattern_, [&](auto& ws, int e) {
-    gather(mesh_, x.data(), e, ws);
-    per_element[e] = element_energy(mat, tabulation_of(e), weights_of(e), ws);
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, x.data(), e, ws);
+      per_element[e] = element_energy(mat, tabulation_of(e), weights_of(e), ws);
+    });
   });
   return per_element;
 }
 
 Eigen::VectorXd Assembler::element_volumes() const {
   Eigen::VectorXd volume(mesh_.num_elements());
-  for_each_element(mesh_, *pattern_, [&](auto& ws, int e) {
-    gather(mesh_, mesh_.nodes.data(), e, ws);
-    double v = 0.0;
-    const Eigen::VectorXd& w = weights_of(e);
-    for (int q = 0; q < w.size(); ++q) v += reference_gradients(tabulation_of(e), w, q, ws);
-    volume[e] = v;
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, mesh_.nodes.data(), e, ws);
+      double v = 0.0;
+      const Eigen::VectorXd& w = weights_of(e);
+      for (int q = 0; q < w.size(); ++q) v += reference_gradients(tabulation_of(e), w, q, ws);
+      volume[e] = v;
+    });
   });
   return volume;
 }
@@ -256,16 +257,19 @@ Eigen::VectorXd Assembler::element_volumes() const {
 Eigen::VectorXd Assembler::element_min_det_F(const Eigen::VectorXd& x) const {
   check_size(x, mesh_);
   Eigen::VectorXd out(mesh_.num_elements());
-  for_each_element(mesh_, *pattern_, [&](auto& ws, int e) {
-    gather(mesh_, x.data(), e, ws);
-    double m = std::numeric_limits<double>::infinity();
-    const Eigen::VectorXd& w = weights_of(e);
-    for (int q = 0; q < w.size(); ++q) {
-      reference_gradients(tabulation_of(e), w, q, ws);
-      const Mat3 F = ws.x.lazyProduct(ws.dNdX);
-      m = std::min(m, F.determinant());
-    }
-    out[e] = m;
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, x.data(), e, ws);
+      double m = std::numeric_limits<double>::infinity();
+      const Eigen::VectorXd& w = weights_of(e);
+      for (int q = 0; q < w.size(); ++q) {
+        reference_gradients(tabulation_of(e), w, q, ws);
+        const Mat3 F = ws.x.lazyProduct(ws.dNdX);
+        m = std::min(m, F.determinant());
+      }
+      out[e] = m;
+    });
   });
   return out;
 }
@@ -274,12 +278,17 @@ double Assembler::gradient(const Material& mat, const Eigen::VectorXd& x, Eigen:
   check_size(x, mesh_);
   g.setZero(3 * mesh_.num_nodes());
   std::vector<double> per_element(mesh_.num_elements());
-  for_each_element(mesh_, *pattern_, [&](auto& ws, int e) {
-    gather(mesh_, x.data(), e, ws);
-    per_element[e] = element_gradient(mat, tabulation_of(e), weights_of(e), ws);
-    for (int i = 0; i < ws.nodes(); ++i) g.segment<3>(3 * mesh_.elements(i, e)) += ws.g.template segment<3>(3 * i);
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      gather(mesh_, x.data(), e, ws);
+      per_element[e] = element_gradient(mat, tabulation_of(e), weights_of(e), ws);
+      for (int i = 0; i < ws.nodes(); ++i) g.segment<3>(3 * mesh_.elements(i, e)) += ws.g.template segment<3>(3 * i);
+    });
   });
-  return std::accumulate(per_element.begin(), per_element.end(), 0.0);
+  double total = 0.0;
+  for (double v : per_element) total += v;
+  return total;
 }
 
 double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::VectorXd& g, SparseMatrix& K,
@@ -290,15 +299,20 @@ double Assembler::hessian(const Material& mat, const Eigen::VectorXd& x, Eigen::
   g.setZero(3 * mesh_.num_nodes());
   double* values = K.valuePtr();
   std::vector<double> per_element(mesh_.num_elements());
-  for_each_element_by_columns(mesh_, *pattern_, [&](auto& ws, int e, const auto& owns) {
-    gather(mesh_, x.data(), e, ws);
-    const double energy = element_hessian(mat, tabulation_of(e), weights_of(e), ws, project && !mat.constant_tangent());
-    if (owns(mesh_.elements(0, e))) per_element[e] = energy;  // one writer per element
-    for (int i = 0; i < ws.nodes(); ++i)
-      if (const int node = mesh_.elements(i, e); owns(node)) g.segment<3>(3 * node) += ws.g.template segment<3>(3 * i);
-    scatter_hessian(*pattern_, mesh_, e, ws, values, owns);
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element_by_columns<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e, const auto& owns) {
+      gather(mesh_, x.data(), e, ws);
+      const double energy = element_hessian(mat, tabulation_of(e), weights_of(e), ws, project && !mat.constant_tangent());
+      if (owns(mesh_.elements(0, e))) per_element[e] = energy;  // one writer per element
+      for (int i = 0; i < ws.nodes(); ++i)
+        if (const int node = mesh_.elements(i, e); owns(node)) g.segment<3>(3 * node) += ws.g.template segment<3>(3 * i);
+      scatter_hessian(*pattern_, mesh_, e, ws, values, owns);
+    });
   });
-  return std::accumulate(per_element.begin(), per_element.end(), 0.0);
+  double total = 0.0;
+  for (double v : per_element) total += v;
+  return total;
 }
 
 Eigen::VectorXd Assembler::body_force_vector(const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& f,
@@ -306,17 +320,20 @@ Eigen::VectorXd Assembler::body_force_vector(const std::function<Eigen::Vector3d
   const QuadratureRule& standard_rule = quadrature_rule(mesh_.cell, degree);
   const BasisTabulation& standard_tab = cached_tabulation(mesh_.cell, mesh_.order, degree);
   Eigen::VectorXd b = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
-  for_each_element(mesh_, *pattern_, [&](auto& ws, int e) {
-    const bool own = !mass_quadrature_.empty() && mass_quadrature_[e];  // a cut cell's load rule
-    const QuadratureRule& rule = own ? mass_quadrature_[e]->rule : standard_rule;
-    const BasisTabulation& tab = own ? mass_quadrature_[e]->tabulation : standard_tab;
-    gather(mesh_, mesh_.nodes.data(), e, ws);
-    for (int q = 0; q < rule.size(); ++q) {
-      const double wq = reference_gradients(tab, rule.weights, q, ws);
-      const Eigen::Vector3d X = ws.X * tab.values.col(q);
-      const Eigen::Vector3d fq = f(X);
-      for (int i = 0; i < ws.nodes(); ++i) b.segment<3>(3 * mesh_.elements(i, e)) += wq * tab.values(i, q) * fq;
-    }
+  dispatch_nodes(mesh_.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh_, *pattern_, [&](ElementWorkspace<N>& ws, int e) {
+      const bool own = !mass_quadrature_.empty() && mass_quadrature_[e];  // a cut cell's load rule
+      const QuadratureRule& rule = own ? mass_quadrature_[e]->rule : standard_rule;
+      const BasisTabulation& tab = own ? mass_quadrature_[e]->tabulation : standard_tab;
+      gather(mesh_, mesh_.nodes.data(), e, ws);
+      for (int q = 0; q < rule.size(); ++q) {
+        const double wq = reference_gradients(tab, rule.weights, q, ws);
+        const Eigen::Vector3d X = ws.X * tab.values.col(q);
+        const Eigen::Vector3d fq = f(X);
+        for (int i = 0; i < ws.nodes(); ++i) b.segment<3>(3 * mesh_.elements(i, e)) += wq * tab.values(i, q) * fq;
+      }
+    });
   });
   return b;
 }
@@ -342,16 +359,18 @@ void for_each_element_mass(const Mesh& mesh, const SparsityPattern& pattern, con
                            double density, int degree, Body&& body) {
   const QuadratureRule& standard_rule = quadrature_rule(mesh.cell, degree);
   const BasisTabulation& standard_tab = cached_tabulation(mesh.cell, mesh.order, degree);
-  for_each_element(mesh, pattern, [&](auto& ws, int e) {
-    const bool own = !per_element.empty() && per_element[e];
-    const QuadratureRule& rule = own ? per_element[e]->rule : standard_rule;
-    const BasisTabulation& tab = own ? per_element[e]->tabulation : standard_tab;
-    gather(mesh, mesh.nodes.data(), e, ws);
-    // Built once per simulation (or per mass action), so the dynamic-size case may allocate here.
-    constexpr int N = decltype(ws.X)::ColsAtCompileTime;
-    Eigen::Matrix<double, N, N> Me;
-    element_mass(rule, tab, density, ws, Me);
-    body(e, Me);
+  dispatch_nodes(mesh.nodes_per_element(), [&](auto n) {
+    constexpr int N = decltype(n)::value;
+    for_each_element<N>(mesh, pattern, [&](ElementWorkspace<N>& ws, int e) {
+      const bool own = !per_element.empty() && per_element[e];
+      const QuadratureRule& rule = own ? per_element[e]->rule : standard_rule;
+      const BasisTabulation& tab = own ? per_element[e]->tabulation : standard_tab;
+      gather(mesh, mesh.nodes.data(), e, ws);
+      // Built once per simulation (or per mass action), so the dynamic-size case may allocate here.
+      Eigen::Matrix<double, N, N> Me;
+      element_mass(rule, tab, density, ws, Me);
+      body(e, Me);
+    });
   });
 }
 
