@@ -1,5 +1,6 @@
 #include "command_line.hpp"
 
+#include "provenance/provenance.hpp"
 #include "solver/solver_spec.hpp"
 
 #include <CLI/CLI.hpp>
@@ -15,6 +16,7 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   CLI::App app{"hofem: verification and benchmark harness for high-order FEM of deformable solids"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Help for every subcommand");
+  app.set_version_flag("--version", version_text(), "Print hofem's version, commit, build type and compiler");
 
   auto& qo = out.quadrature;
   auto* quad = app.add_subcommand("quadrature", "Print the quadrature rule for a cell and degree");
@@ -63,8 +65,12 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   auto& vo = out.verify;
   auto* verify = app.add_subcommand("verify", "Run the verification suite and write its JSON report");
   verify->add_option("--out", vo.out, "Report path")->capture_default_str();
-  verify->add_option("--group", vo.group, "Only report rows whose group starts with this prefix");
-  verify->add_flag("--quiet", vo.quiet, "Print only the summary line");
+  verify->add_option("--group", vo.group,
+                     "Run only the checks whose groups start with this prefix (e.g. quadrature, embedded, mms.rate_h1) "
+                     "and report only their rows");
+  verify->add_flag("--quiet", vo.quiet, "Print only the summary line (progress lines on stderr stay: HOFEM_PROGRESS=0)");
+  verify->add_option("--junit", vo.junit, "Also write the checks as JUnit XML to this file (one testcase per check)");
+  verify->add_flag("--list", vo.list, "List the families of checks (id, ctest label, groups) and exit");
   verify->add_option("--convergence", vo.convergence, "Manufactured-solution study: none, ci or full")->capture_default_str();
 
   auto& ro = out.run;
@@ -115,6 +121,8 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   } catch (const CLI::CallForHelp& e) {
     return print_help(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return print_help(e);
+  } catch (const CLI::CallForVersion& e) {
     return print_help(e);
   } catch (const CLI::ParseError& e) {
     std::string what = e.what();

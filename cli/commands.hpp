@@ -65,6 +65,8 @@ struct VerifyOptions {
   std::string group;
   bool quiet = false;
   std::string convergence = "ci";
+  std::string junit;  ///< JUnit XML path, empty: none
+  bool list = false;  ///< print the families (id, label, groups) and exit
 };
 // `hofem verify` is run by its own executable, hofem-verify
 // (verification/verify_main.cpp), so that this one does not link the

@@ -254,7 +254,7 @@ def summary(report, bench):
             t, unit, _ = med[key]
             print(f"  {key:32} {t:12.4g} {unit}")
     ctx = bench.get("context", {})
-    print(f"  machine: {ctx.get('num_cpus', '?')} cpus @ {ctx.get('mhz_per_cpu', '?')} MHz, build: {ctx.get('hofem_build', '?')}")
+    print(f"  machine: {ctx.get('num_cpus', '?')} cpus @ {ctx.get('mhz_per_cpu', '?')} MHz, build: {ctx.get('hofem_build_type', '?')} {ctx.get('hofem_compiler', '')} commit {ctx.get('hofem_commit', '?')[:10]}")
 
 
 def plot_assembly(bench, out):

@@ -3,6 +3,8 @@
 // are parsed by the same command-line code as every other subcommand.
 #include "command_line.hpp"
 #include "io/atomic_file.hpp"
+#include "junit_report.hpp"
+#include "provenance/provenance.hpp"
 #include "run_verification.hpp"
 
 #include <fmt/core.h>
@@ -16,13 +18,37 @@
 
 namespace {
 
+void write_file(const std::string& path, const std::string& text) {
+  if (const std::filesystem::path p(path); p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
+  hofem::write_file_atomically(path, text);  // complete or absent, never truncated
+}
+
+// `hofem verify --list`: one line per family, "id label groups...", the order
+// the suite runs them (ctest's verify.<id> tests are checked against it).
+int list_families() {
+  for (const auto& f : hofem::verification::check_families()) {
+    fmt::print("{} {}", f.id, f.label);
+    for (const auto& g : f.groups) fmt::print(" {}", g);
+    fmt::print("\n");
+  }
+  return 0;
+}
+
 int run_verify(const hofem::cli::VerifyOptions& o) {
   using namespace hofem::verification;
-  Report report = run_all_checks({o.convergence});
-  // --group: the file holds that group's rows, measurements and summary only.
-  const nlohmann::json j = o.group.empty() ? report.to_json() : report.only(o.group).to_json();
-  if (const std::filesystem::path p(o.out); p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
-  hofem::write_file_atomically(o.out, j.dump(1) + "\n");  // complete or absent, never truncated
+  if (o.list) return list_families();
+  const SuiteOptions options{.convergence = o.convergence, .group = o.group, .progress = true};
+  if (selected_families(options).empty()) {
+    fmt::print(stderr, "hofem: error: {}\n", no_families_message(options));
+    return 2;
+  }
+  Report report = run_checks(options);
+  // --group: the file holds that prefix's rows, measurements and summary only.
+  if (!o.group.empty()) report = report.only(o.group);
+  nlohmann::json j = report.to_json();
+  j["context"] = hofem::provenance_context(o.convergence);
+  write_file(o.out, j.dump(1) + "\n");
+  if (!o.junit.empty()) write_file(o.junit, junit_xml(report, "hofem.verify"));
   if (!o.quiet) {
     fmt::print("{}", report.summary_table());
     for (const auto& r : report.rows())

@@ -8,6 +8,8 @@
 #include "scene/scene_mesh.hpp"
 
 #include "parallel/mpi_runtime.hpp"
+#include "provenance/progress.hpp"
+#include "provenance/provenance.hpp"
 
 #include <fmt/format.h>
 
@@ -17,7 +19,6 @@
 #include <filesystem>
 #include <optional>
 #include <regex>
-#include <unistd.h>
 
 namespace hofem {
 
@@ -121,14 +122,6 @@ long long stiffness_points(const Mesh& mesh, int standard, const SceneEmbedding*
   return n;
 }
 
-void progress_bar(double fraction, double t, bool done) {
-  const int width = 40, filled = static_cast<int>(std::lround(fraction * width));
-  std::fprintf(stderr, "\r[%s%s] %3d%%  t = %.4g%s", std::string(filled, '#').c_str(),
-               std::string(width - filled, '.').c_str(), static_cast<int>(std::lround(100 * fraction)), t,
-               done ? "\n" : "");
-  std::fflush(stderr);
-}
-
 // Removes what an earlier run wrote into the output directory - frames, .pvd
 // indexes, stats.json, partial files of a killed run - so that a run's folder
 // never mixes two runs (a frame 40 of the old run beside frames 0-20 of the new
@@ -161,6 +154,7 @@ struct SceneRun {
   SceneRunResult& result;
   json& st;  ///< result.stats
   std::vector<std::pair<double, std::string>>& frames;
+  ProgressLog* progress;  ///< null unless options.progress
 
   void run_static(std::vector<PrescribedMotion> motions);
   void run_dynamic(std::vector<PrescribedMotion> motions);
@@ -211,7 +205,9 @@ void SceneRun::run_static(std::vector<PrescribedMotion> motions) {
   st["quadrature_points"] = stiffness_points(mesh, static_cast<int>(problem.assembler().rule().size()), emb);
   if (options.observer && writer)
     options.observer(SceneState{mesh, emb, 0, 0.0, Eigen::VectorXd::Zero(3 * mesh.num_nodes())});
+  if (progress) progress->stage("static solve", 0.0);  // a heartbeat while Newton runs
   const StaticReport r = problem.solve();
+  if (progress) progress->done(r.converged ? "converged" : "not converged");
   result.ok = r.converged;
   result.message = r.message;
   const DistributedMesh* piece = problem.distributed_mesh();
@@ -237,7 +233,6 @@ json step_row(int k, const StepReport& r) {
 // Time stepping: frames every output_every steps, energies, the displacement
 // curve and min det F per step.
 void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
-  const bool progress = options.progress && isatty(fileno(stderr));
   DynamicsOptions dynamics = s.dynamics;
   dynamics.distributed = options.distributed;
   if (emb) {
@@ -267,6 +262,7 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
     const Eigen::VectorXd u0 = nodal(piece, sim.displacement());
     if (writer) options.observer(SceneState{mesh, emb, 0, sim.time(), u0});
   }
+  if (progress) progress->stage(fmt::format("{} steps of dt = {:.3g} s", steps, s.dynamics.dt), 0.0);
   json per_step = json::array();
   VolumeRatioRecord deformation;
   int done = 0;
@@ -290,9 +286,9 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
     per_step.push_back(row);
     done = k;
     if (k % s.output_every == 0 || k == steps) frame(k);
-    if (progress) progress_bar(static_cast<double>(k) / steps, sim.time(), k == steps);
+    if (progress) progress->update(fmt::format("step {}/{}, t = {:.4g}", k, steps, sim.time()), double(k) / steps);
   }
-  if (progress && !result.ok) std::fprintf(stderr, "\n");
+  if (progress) progress->done(result.ok ? fmt::format("{} steps", done) : "failed at step " + std::to_string(done + 1));
   st["dt"] = s.dynamics.dt;
   st["duration"] = s.duration;
   st["steps"] = per_step;
@@ -327,6 +323,10 @@ void SceneRun::write_outputs() {
 
 SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const SceneRunOptions& options, bool writer,
                             Clock::time_point t_start) {
+  // Progress on stderr (the writer's): set-up, then the solve or the steps with
+  // the time, an estimate of the rest and a line at least every 20 s.
+  std::optional<ProgressLog> progress;
+  if (options.progress && writer) progress.emplace("scene " + s.name).stage("set-up: mesh, embedding, material", 0.0);
   const Mesh mesh = build_scene_mesh(s);
   std::optional<SceneEmbedding> embedding;
   if (s.embedded) embedding.emplace(s, mesh);
@@ -336,8 +336,9 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
   SceneRunResult result;
   std::vector<std::pair<double, std::string>> frames;
   SceneRun run{s, out_dir, options, writer, t_start, mesh, embedding ? &*embedding : nullptr, *material, result,
-               result.stats, frames};
+               result.stats, frames, progress ? &*progress : nullptr};
   json& st = result.stats;
+  st["context"] = provenance_context(s.name);
   st["scene"] = s.name;
   st["file"] = s.file;
   st["integrator"] = s.is_static ? std::string("static") : std::string(integrator_name(s.dynamics.integrator));
@@ -377,8 +378,8 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     // A run that stops on an error still leaves a stats.json, which says so and why.
     if (files)
       write_file_atomically((std::filesystem::path(out_dir) / "stats.json").string(),
-                            json{{"scene", s.name}, {"file", s.file}, {"status", "failed"}, {"ok", false},
-                                 {"message", e.what()},
+                            json{{"context", provenance_context(s.name)}, {"scene", s.name}, {"file", s.file},
+                                 {"status", "failed"}, {"ok", false}, {"message", e.what()},
                                  {"wall_seconds", std::chrono::duration<double>(Clock::now() - t_start).count()}}
                                     .dump(1) +
                                 "\n");

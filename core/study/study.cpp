@@ -1,6 +1,8 @@
 #include "study/study.hpp"
 
 #include "io/atomic_file.hpp"
+#include "provenance/progress.hpp"
+#include "provenance/provenance.hpp"
 #include "study/scene_error.hpp"
 
 #include <fmt/format.h>
@@ -10,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 
 namespace hofem {
 
@@ -185,11 +188,18 @@ double richardson_error(double distance_to_coarser, double ratio, double order) 
 json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions& options) {
   const auto t0 = Clock::now();
   const fs::path out(out_dir);
+  // Progress: a line per run (with the share of runs done), its result, and a
+  // heartbeat at least every 20 s while a run goes on.
+  std::optional<ProgressLog> progress;
+  if (options.progress) progress.emplace("study " + s.name);
   auto say = [&](const std::string& line) {
-    if (options.progress) fmt::print(stderr, "study {}: [{:.0f} s] {}\n", s.name, seconds_since(t0), line);
+    if (progress) progress->note(line);
   };
+  int started = 0;
+  const double total_runs = 1.0 + (s.coarser_reference ? 1.0 : 0.0) + static_cast<double>(s.runs.size());
   auto record = [&](const StudyRun& r) {
-    say(fmt::format("running {} ({})", r.name, r.family));
+    if (progress) progress->stage(fmt::format("running {} ({})", r.name, r.family), started / total_runs);
+    ++started;
     return record_run(r.scene, (out / "runs" / r.name).string(), s.frames);
   };
   // 1. The reference, its measuring data and floor, and its own error from the coarser level.
@@ -232,7 +242,8 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
   }
 
   // 3. The table, the cheapest runs, the files.
-  json study{{"name", s.name},
+  json study{{"context", provenance_context(s.name)},
+             {"name", s.name},
              {"file", s.file},
              {"scene", s.scene_file},
              {"overrides", s.overrides},

@@ -1,5 +1,6 @@
-// The whole table-driven verification suite, as a test: any failing row fails,
-// and the failing rows are printed with their measured values.
+// The verification suite's machinery: the table of families, the report and
+// its JUnit form (the checks themselves run as ctest's verify.<id> tests).
+#include "junit_report.hpp"
 #include "run_verification.hpp"
 
 #include <gtest/gtest.h>
@@ -7,15 +8,48 @@
 namespace hofem::verification {
 namespace {
 
-// The fast part of the suite; the convergence study runs once, through the CLI
-// test `cli.verify` (hofem verify --convergence ci), so it is not run twice.
-TEST(VerificationSuite, EveryFastCheckPasses) {
-  const Report report = run_fast_checks();
-  EXPECT_GT(report.rows().size(), 1000u);
-  for (const CheckRow& r : report.rows())
-    EXPECT_TRUE(r.pass) << r.group << " | " << r.name << ": measured " << r.measured << ", threshold "
-                        << (r.compare == Compare::AtMost ? "<= " : ">= ") << r.threshold;
-  EXPECT_EQ(report.failures(), 0);
+// The families themselves run as ctest's verify.<id> tests (hofem verify
+// --group ...); here, the table that selects them.
+TEST(VerificationFamilies, GroupPrefixesSelectTheirFamilies) {
+  const auto ids = [](const std::string& group, const std::string& convergence = "ci") {
+    std::string out;
+    for (const CheckFamily* f : selected_families({.convergence = convergence, .group = group}))
+      out += (out.empty() ? "" : " ") + f->id;
+    return out;
+  };
+  EXPECT_EQ(ids("quadrature"), "quadrature");
+  EXPECT_EQ(ids("quadrature.exactness"), "quadrature");  // a group inside a family
+  EXPECT_EQ(ids("embedded"), "fig4 loads fig5 fig6 fig10");
+  EXPECT_EQ(ids("embedded", "none"), "fig4 loads");      // no convergence families
+  EXPECT_EQ(ids("embedded.fig1"), "fig10");
+  EXPECT_EQ(ids("mms.rate_h1"), "mms");
+  EXPECT_EQ(ids("nosuch"), "");
+  EXPECT_EQ(selected_families({.convergence = "ci"}).size(), check_families().size());
+  EXPECT_EQ(selected_families({.convergence = "none"}).size(), 10u);  // the fast nine and the solvers
+  EXPECT_NE(no_families_message({.group = "nosuch"}).find("groups start with: quadrature., basis."), std::string::npos);
+}
+
+// Every family's groups are distinct prefixes, so no two families claim a row.
+TEST(VerificationFamilies, GroupsDoNotOverlap) {
+  std::vector<std::string> all;
+  for (const CheckFamily& f : check_families()) all.insert(all.end(), f.groups.begin(), f.groups.end());
+  for (std::size_t i = 0; i < all.size(); ++i)
+    for (std::size_t j = 0; j < all.size(); ++j)
+      if (i != j) EXPECT_FALSE(all[j].starts_with(all[i])) << all[i] << " is a prefix of " << all[j];
+}
+
+// JUnit: a failing check becomes a <failure> with measured, threshold and why;
+// passing ones are empty testcases; markup in names is escaped.
+TEST(VerificationJunit, FailuresCarryMeasuredThresholdAndWhy) {
+  Report r;
+  r.check("quadrature.exactness", "tet <WV> & \"5\"", 1e-16, 1e-13, Compare::AtMost, "rounding");
+  r.check("mms.rate_h1", "tet p2", 1.2, 1.9, Compare::AtLeast, "asymptotic rate p");
+  const std::string xml = junit_xml(r, "hofem.verify");
+  EXPECT_NE(xml.find("<testsuites name=\"hofem.verify\" tests=\"2\" failures=\"1\">"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("name=\"tet &lt;WV&gt; &amp; &quot;5&quot;\"/>"), std::string::npos) << xml;
+  EXPECT_NE(xml.find("<failure message=\"measured 1.2, threshold &gt;= 1.9: asymptotic rate p\">"), std::string::npos)
+      << xml;
+  EXPECT_EQ(xml_escape(std::string("a\x01" "b\tc")), "a?b\tc");  // XML 1.0 holds no control characters
 }
 
 // The report machinery itself: a failing row is reported as failing, NaN fails,
