@@ -8,9 +8,9 @@ execute_process(COMMAND git -C "${SOURCE_DIR}" rev-parse HEAD
 if(NOT rc EQUAL 0)
   set(commit "unknown")
 endif()
-# Dirty: tracked files differ from the commit (untracked files, such as build
-# directories or reports being written, do not count).
-execute_process(COMMAND git -C "${SOURCE_DIR}" diff --quiet HEAD -- RESULT_VARIABLE drc ERROR_QUIET)
+# Dirty: tracked source files differ from the commit. Untracked files (build
+# directories) and reports/ (which the main job rewrites) do not count.
+execute_process(COMMAND git -C "${SOURCE_DIR}" diff --quiet HEAD -- . ":(exclude)reports" RESULT_VARIABLE drc ERROR_QUIET)
 if(drc EQUAL 1)
   set(dirty true)
 else()
