@@ -12,10 +12,14 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <memory>
+#include <string>
 #include <thread>
+#include <utility>
 
 namespace {
 
@@ -38,6 +42,7 @@ struct ElementKind {
 const ElementKind kKinds[] = {{CellType::Tetrahedron, 1, 16, "Tet4"},   {CellType::Tetrahedron, 2, 10, "Tet10"},
                               {CellType::Tetrahedron, 3, 7, "Tet20"},   {CellType::Hexahedron, 1, 24, "Hex8"},
                               {CellType::Hexahedron, 2, 12, "Hex20"}};
+constexpr int kTet4 = 0, kTet10 = 1, kTet20 = 2, kHex20 = 4;  // indices into kKinds
 
 // One mesh per kind, built once: a unit cube, xmin face clamped, deformed by a
 // smooth displacement so that F != I at every quadrature point.
@@ -61,44 +66,40 @@ Setup& setup(int kind) {
 
 const char* kMaterials[] = {"linear", "stvk", "corotated", "neohookean", "stable-neohookean"};
 
-void set_counters(benchmark::State& state, const Setup& s) {
+void set_counters(benchmark::State& state, int kind, int material, const Setup& s) {
   const double elements = s.mesh.num_elements();
   const double points = elements * s.assembler->rule().size();
   state.counters["elements_per_s"] = benchmark::Counter(elements, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["qpoints_per_s"] = benchmark::Counter(points, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["dofs"] = s.dofs.num_free();
   state.counters["qpoints_per_element"] = s.assembler->rule().size();
-  state.SetLabel(std::string(kKinds[state.range(0)].label) + " " + kMaterials[state.range(1)]);
+  state.SetLabel(std::string(kKinds[kind].label) + " " + kMaterials[material]);
 }
 
-void BM_AssembleEnergy(benchmark::State& state) {
-  Setup& s = setup(static_cast<int>(state.range(0)));
-  const auto mat = make_material(kMaterials[state.range(1)], LameParameters::from_young_poisson(1.0, 0.3));
+void BM_AssembleEnergy(benchmark::State& state, int kind, int material) {
+  Setup& s = setup(kind);
+  const auto mat = make_material(kMaterials[material], LameParameters::from_young_poisson(1.0, 0.3));
   for (auto _ : state) benchmark::DoNotOptimize(s.assembler->energy(*mat, s.x));
-  set_counters(state, s);
+  set_counters(state, kind, material, s);
 }
 
-void BM_AssembleGradient(benchmark::State& state) {
-  Setup& s = setup(static_cast<int>(state.range(0)));
-  const auto mat = make_material(kMaterials[state.range(1)], LameParameters::from_young_poisson(1.0, 0.3));
+void BM_AssembleGradient(benchmark::State& state, int kind, int material) {
+  Setup& s = setup(kind);
+  const auto mat = make_material(kMaterials[material], LameParameters::from_young_poisson(1.0, 0.3));
   Eigen::VectorXd g;
   for (auto _ : state) benchmark::DoNotOptimize(s.assembler->gradient(*mat, s.x, g));
-  set_counters(state, s);
+  set_counters(state, kind, material, s);
 }
 
-void BM_AssembleHessian(benchmark::State& state) {
-  Setup& s = setup(static_cast<int>(state.range(0)));
-  const auto mat = make_material(kMaterials[state.range(1)], LameParameters::from_young_poisson(1.0, 0.3));
+void BM_AssembleHessian(benchmark::State& state, int kind, int material) {
+  Setup& s = setup(kind);
+  const auto mat = make_material(kMaterials[material], LameParameters::from_young_poisson(1.0, 0.3));
   Eigen::VectorXd g;
   SparseMatrix K = s.assembler->new_matrix();
   for (auto _ : state) benchmark::DoNotOptimize(s.assembler->hessian(*mat, s.x, g, K, false));
-  set_counters(state, s);
+  set_counters(state, kind, material, s);
   state.counters["nonzeros"] = static_cast<double>(K.nonZeros());
 }
-
-BENCHMARK(BM_AssembleEnergy)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3, 4}})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_AssembleGradient)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3, 4}})->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_AssembleHessian)->ArgsProduct({{0, 1, 2, 3, 4}, {0, 1, 2, 3, 4}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The element Hessian kernel alone (gather and element_hessian, no scatter), on
 // every OpenMP thread, against the FMA peak measured right after on as many
@@ -127,10 +128,9 @@ void element_kernel_loop(const Setup& s, const Material& mat, double& sink) {
   sink += total;
 }
 
-void BM_ElementKernel(benchmark::State& state) {
-  const int kind = static_cast<int>(state.range(0));
+void BM_ElementKernel(benchmark::State& state, int kind, int material) {
   Setup& s = setup(kind);
-  const auto mat = make_material(kMaterials[state.range(1)], LameParameters::from_young_poisson(1.0, 0.3));
+  const auto mat = make_material(kMaterials[material], LameParameters::from_young_poisson(1.0, 0.3));
   double sink = 0.0;
   for (auto _ : state) {
     switch (s.mesh.nodes_per_element()) {
@@ -146,29 +146,27 @@ void BM_ElementKernel(benchmark::State& state) {
   state.counters["flops_per_element"] = flops / static_cast<double>(s.mesh.num_elements());
   state.counters["fma_peak_GFLOPs"] = bench::measure_fma_peak(omp_get_max_threads()) / 1e9;
   state.counters["threads"] = omp_get_max_threads();
-  set_counters(state, s);
+  set_counters(state, kind, material, s);
 }
-BENCHMARK(BM_ElementKernel)->ArgsProduct({{1, 2, 4}, {0, 3}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Hessian assembly with 1 and 2 OpenMP threads (Neo-Hookean): what the second core buys.
-void BM_AssembleHessianThreads(benchmark::State& state) {
-  Setup& s = setup(static_cast<int>(state.range(0)));
+void BM_AssembleHessianThreads(benchmark::State& state, int kind, int threads) {
+  Setup& s = setup(kind);
   const auto mat = make_material("neohookean", LameParameters::from_young_poisson(1.0, 0.3));
   const int previous = omp_get_max_threads();
-  omp_set_num_threads(static_cast<int>(state.range(1)));
+  omp_set_num_threads(threads);
   Eigen::VectorXd g;
   SparseMatrix K = s.assembler->new_matrix();
   for (auto _ : state) benchmark::DoNotOptimize(s.assembler->hessian(*mat, s.x, g, K, false));
   omp_set_num_threads(previous);
   const double elements = s.mesh.num_elements();
   state.counters["elements_per_s"] = benchmark::Counter(elements, benchmark::Counter::kIsIterationInvariantRate);
-  state.SetLabel(std::string(kKinds[state.range(0)].label) + " neohookean threads=" + std::to_string(state.range(1)));
+  state.SetLabel(std::string(kKinds[kind].label) + " neohookean threads=" + std::to_string(threads));
 }
-BENCHMARK(BM_AssembleHessianThreads)->ArgsProduct({{0, 2, 4}, {1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Pattern, element-to-nonzero map and colouring: once per mesh.
-void BM_SparsityPattern(benchmark::State& state) {
-  Setup& s = setup(static_cast<int>(state.range(0)));
+void BM_SparsityPattern(benchmark::State& state, int kind) {
+  Setup& s = setup(kind);
   size_t map_bytes = 0;
   std::int64_t nnz = 0;
   for (auto _ : state) {
@@ -181,8 +179,42 @@ void BM_SparsityPattern(benchmark::State& state) {
   state.counters["map_MB"] = static_cast<double>(map_bytes) / 1e6;
   state.counters["elements_per_s"] =
       benchmark::Counter(static_cast<double>(s.mesh.num_elements()), benchmark::Counter::kIsIterationInvariantRate);
-  state.SetLabel(kKinds[state.range(0)].label);
+  state.SetLabel(kKinds[kind].label);
 }
-BENCHMARK(BM_SparsityPattern)->DenseRange(0, 4)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Names say what is measured: BM_AssembleHessian/tet10/neohookean (element,
+// then material), BM_AssembleHessianThreads/hex20/threads:2, stable across runs
+// so that two result files pair up by name. Wall time: the kernels run on
+// every OpenMP thread.
+std::string element_name(int kind) {
+  std::string n = kKinds[kind].label;
+  std::transform(n.begin(), n.end(), n.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  return n;
+}
+
+template <class Function, class... Args>
+void register_named(const std::string& name, Function f, Args... args) {
+  benchmark::RegisterBenchmark(name.c_str(), f, args...)->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+
+const bool registered = [] {
+  const int kinds = static_cast<int>(std::size(kKinds)), materials = static_cast<int>(std::size(kMaterials));
+  using Assembly = void (*)(benchmark::State&, int, int);
+  const std::pair<const char*, Assembly> families[] = {
+      {"BM_AssembleEnergy", BM_AssembleEnergy}, {"BM_AssembleGradient", BM_AssembleGradient}, {"BM_AssembleHessian", BM_AssembleHessian}};
+  for (const auto& [family, f] : families)
+    for (int k = 0; k < kinds; ++k)
+      for (int m = 0; m < materials; ++m)
+        register_named(std::string(family) + "/" + element_name(k) + "/" + kMaterials[m], f, k, m);
+  for (int k : {kTet10, kTet20, kHex20})
+    for (int m : {0, 3})  // linear, neohookean
+      register_named("BM_ElementKernel/" + element_name(k) + "/" + kMaterials[m], BM_ElementKernel, k, m);
+  for (int k : {kTet4, kTet20, kHex20})
+    for (int threads : {1, 2})
+      register_named("BM_AssembleHessianThreads/" + element_name(k) + "/threads:" + std::to_string(threads),
+                     BM_AssembleHessianThreads, k, threads);
+  for (int k = 0; k < kinds; ++k) register_named("BM_SparsityPattern/" + element_name(k), BM_SparsityPattern, k);
+  return true;
+}();
 
 }  // namespace

@@ -18,8 +18,22 @@
 // and the larger sizes spend the time on different methods that can be fastest
 // there. Predictions extrapolate a combination's own smaller runs (growth
 // exponent from the two nearest sizes), so a multilevel method that is slow at
-// 1e3 but scales well still makes the cut. What is skipped is in the JSON with
-// the reason.
+// 1e3 but scales well still makes the cut. What is skipped is not in the JSON
+// of the results: its names and reasons go to HOFEM_BENCH_SKIPS_OUT
+// (bench_skip_reporter.hpp).
+//
+// Repetitions: each configuration is one benchmark with Preset::repetitions at
+// its size level, each repetition one run (set-up + solve) and an entry of its
+// own, so Google Benchmark computes median / mean / stddev / cv and
+// tools/compare.py can run its Mann-Whitney U test on two files. Quick: 5 at
+// ~1e3, where runs take milliseconds and the noise is of their order (with 5
+// against 5 an exact two-sided U test can reach p = 0.008; with 3 against 3 it
+// never goes below 0.1, so 3 would not do), 1 at ~1e4 and above, whose runs
+// take 0.1-6 s (reports/solver_benchmarks.json of 2026-12-02: one run of each
+// configuration the quick sweep made is 48 s, 42 s of it at those sizes; two
+// repetitions there would add ~42 s to the main job's 113 s sweep and still
+// leave the U test unable to go below p = 0.33). The full preset repeats the
+// same way.
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_matrix.hpp"
 #include "study/manufactured_solution.hpp"
@@ -51,11 +65,16 @@ struct Preset {
   /// solvers predicted fastest there, each with its predicted-fastest method.
   std::vector<int> keep{0, 6, 3};
   double time_budget = 10.0; ///< seconds: runs predicted to take longer are skipped
+  /// Per level: repetitions of each configuration (the last entry for the levels beyond).
+  std::vector<int> repetitions{5, 1};
   /// Newton at the all-combinations sizes: every Krylov method with every
   /// preconditioner (full), or each preconditioner with the method that solved
   /// the projected Neo-Hookean Hessian of that order and size fastest (quick).
   bool newton_every_method = false;
   int keep_at(int level) const { return level < static_cast<int>(keep.size()) ? keep[level] : keep.back(); }
+  int repetitions_at(int level) const {
+    return level < static_cast<int>(repetitions.size()) ? repetitions[level] : repetitions.back();
+  }
 };
 const Preset& preset();
 
@@ -177,21 +196,33 @@ std::optional<std::string> setup_failure(const std::string& combo, const std::st
 /// start-up (~0.5 s) is not charged to the first run that does.
 void start_runtime_for(const std::string& solver);
 
-/// Runs `work` (returns its time in seconds) once, twice more if it took
-/// < 0.2 s and four more if < 20 ms (at ~1e3 unknowns timer and scheduling noise
-/// is of the order of the run); returns the median.
-template <class Work>
-double median_time(Work&& work) {
-  std::vector<double> t{work()};
-  const int extra = t[0] < 0.02 ? 6 : t[0] < 0.2 ? 2 : 0;
-  for (int i = 0; i < extra; ++i) t.push_back(work());
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
+/// What one configuration of the sweep carries from one repetition to the next
+/// (each repetition is a fresh call of its benchmark function): whether it is
+/// run at all, decided once at the first repetition (otherwise a first
+/// repetition over the budget would skip the others, bench_policy.cpp), and what
+/// the repetitions made so far measured, for the policy's record of the run.
+struct CaseProgress {
+  bool decided = false;
+  std::optional<std::string> skip_reason;
+  std::vector<double> seconds;  ///< set-up + solve of each repetition made
+  double extra_mb = 0.0;        ///< the largest of their peak memories above the start
+  bool all_ok = true;           ///< every repetition solved
+  void add(double s, double mb, bool ok) {
+    seconds.push_back(s);
+    extra_mb = std::max(extra_mb, mb);
+    all_ok = all_ok && ok;
+  }
+  double median() const {
+    std::vector<double> t = seconds;
+    std::sort(t.begin(), t.end());
+    return t.empty() ? 0.0 : t[t.size() / 2];
+  }
+};
 
-/// Reports a run that was not made: error_occurred in the JSON, message "skipped: why".
+/// A configuration not run on purpose: the run is reported as skipped (message
+/// "skipped: why"), which keeps it out of the results (bench_skip_reporter.hpp).
 void skip(benchmark::State& state, const std::string& why);
-/// Reports a run that was made but failed: message "failed: why".
+/// A run that was made but failed: an error in the results, message "failed: why".
 void fail(benchmark::State& state, const std::string& why);
 
 /// Residual histories (relative residual per iteration), kept when

@@ -1,6 +1,7 @@
 // The sweep's policy (see bench_common.hpp): the record of finished runs, the
 // predictions made from it, and the reasons a run is skipped.
 #include "bench_common.hpp"
+#include "bench_skip_reporter.hpp"
 
 #include "parallel/mpi_runtime.hpp"
 
@@ -234,7 +235,9 @@ void start_runtime_for(const std::string& solver) {
   if (solver.find("amg") != std::string::npos || solver.find("hypre") != std::string::npos) ensure_hypre();
 }
 
-void skip(benchmark::State& state, const std::string& why) { state.SkipWithError(("skipped: " + why).c_str()); }
+void skip(benchmark::State& state, const std::string& why) {
+  state.SkipWithError((std::string(kSkipPrefix) + why).c_str());
+}
 void fail(benchmark::State& state, const std::string& why) { state.SkipWithError(("failed: " + why).c_str()); }
 
 }  // namespace hofem::bench

@@ -13,9 +13,11 @@ ProgressConsoleReporter::ProgressConsoleReporter(int total)
 
 void ProgressConsoleReporter::ReportRuns(const std::vector<Run>& runs) {
   benchmark::ConsoleReporter::ReportRuns(runs);
-  if (runs.empty()) return;
+  if (!runs.empty()) count(runs.front().run_name.str());
+}
+
+void ProgressConsoleReporter::count(const std::string& name) {
   // Repetitions and their aggregates arrive in separate calls under one run name.
-  const std::string name = runs.front().run_name.str();
   if (name == last_) return;
   last_ = name;
   ++done_;

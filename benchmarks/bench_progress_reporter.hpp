@@ -18,6 +18,9 @@ class ProgressConsoleReporter : public benchmark::ConsoleReporter {
   explicit ProgressConsoleReporter(int total);
   void ReportRuns(const std::vector<Run>& runs) override;
   void Finalize() override;
+  /// Counts a benchmark as done (once per run name); ReportRuns calls it, and so
+  /// may a filter that keeps a run from this reporter.
+  void count(const std::string& name);
 
  private:
   ProgressLog log_;

@@ -10,16 +10,19 @@
 // for element orders 1-3 (Tet4/10/20; Hex8/Hex20 on the MMS at the smaller sizes)
 // and sizes ~1e3 ... 1e5 (quick) / 1e6 (full) unknowns.
 //
-// One benchmark = one (system, solver). The system is assembled once (cached);
-// the time reported is set-up (analyze + factorize: symbolic and numeric
-// factorisation, or preconditioner set-up) plus solve, the median of repeated
-// runs when they are short (median_time). Our Krylov methods stop at 3000
+// One benchmark = one (system, solver), repeated Preset::repetitions times at
+// its size (bench_common.hpp). The system is assembled once (cached) and the
+// solver built before the timed loop; the timed interval (real_time and, over
+// the same interval, cpu_time: the process's CPU time, every thread) is set-up
+// (analyze + factorize: symbolic and numeric factorisation, or preconditioner
+// set-up) plus solve, nothing else. Our Krylov methods stop at 3000
 // iterations (relative residual 1e-8, the LinearSolver default). Counters:
 // setup_s, solve_s, iterations, rel_residual (||b - A x|| / ||b|| computed
 // here), peak_MB / extra_MB (resident memory peak during the run / above the
-// resident size before it), l2_error / h1_error against u*. Runs not made carry
-// error_message "skipped: <why>"; runs made that did not solve carry
-// "failed: <why>" (see bench_common.hpp for the rules).
+// resident size before it), l2_error / h1_error against u*. Configurations not
+// run are skipped with the reason (skip(): absent from the results, listed in
+// HOFEM_BENCH_SKIPS_OUT); runs made that did not solve, set-up failures
+// included, are errors "failed: <why>" (see bench_common.hpp for the rules).
 #include "bench_common.hpp"
 
 #include "solver/krylov.hpp"
@@ -30,6 +33,7 @@
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,15 +75,15 @@ struct Sample {
   double total() const { return setup_s + solve_s; }
 };
 
-Sample solve_once(const LinearSystem& sys, std::unique_ptr<LinearSolver> solver) {
+Sample solve_once(const LinearSystem& sys, LinearSolver& solver) {
   Sample s;
-  solver->set_mesh_view({&sys.mesh(), &sys.dofs});
-  solver->set_relative_tolerance(kRelativeTolerance);
-  auto* krylov = dynamic_cast<KrylovSolver*>(solver.get());
+  solver.set_mesh_view({&sys.mesh(), &sys.dofs});
+  solver.set_relative_tolerance(kRelativeTolerance);
+  auto* krylov = dynamic_cast<KrylovSolver*>(&solver);
   const auto t0 = Clock::now();
   try {
-    solver->analyze(sys.K);
-    s.set_up = solver->factorize(sys.K);
+    solver.analyze(sys.K);
+    s.set_up = solver.factorize(sys.K);
     if (!s.set_up)
       s.message = krylov ? krylov->preconditioner().last_error() : "the factorisation reports the matrix not positive definite";
   } catch (const std::exception& e) {
@@ -89,13 +93,13 @@ Sample solve_once(const LinearSystem& sys, std::unique_ptr<LinearSolver> solver)
   if (!s.set_up) return s;
   const auto t1 = Clock::now();
   try {
-    solver->solve(sys.b, s.x);
+    solver.solve(sys.b, s.x);
     s.solved = true;
   } catch (const std::exception& e) {
     s.message = e.what();
   }
   s.solve_s = seconds_since(t1);
-  s.iterations = solver->last_iterations();
+  s.iterations = solver.last_iterations();
   if (krylov) s.history = krylov->last_result().history;
   return s;
 }
@@ -107,82 +111,88 @@ struct LinearCase {
   std::string series() const { return key.problem + "|" + cell_tag(key.cell, key.order) + "|p" + std::to_string(key.order); }
 };
 
-void run_linear(benchmark::State& state, const LinearCase& c) {
+std::string kind_tag(const SystemKey& key) { return cell_tag(key.cell, key.order) + std::string("/p") + std::to_string(key.order); }
+
+// Why a configuration is not run, decided at its first repetition: the sweep's
+// policy, a solver this build cannot make, or a method that needs a
+// positive-definite matrix on an indefinite one. Builds the system (untimed).
+std::optional<std::string> linear_skip_reason(const LinearCase& c) {
   const double unknowns = static_cast<double>(c.key.unknowns());
-  state.counters["unknowns"] = unknowns;
+  if (auto why = sweep_skip_reason(c.series(), c.level, c.solver, unknowns, is_direct(c.solver))) return why;
+  try {
+    start_runtime_for(c.solver);
+    make_solver(c.solver);
+  } catch (const std::exception& e) {
+    return std::string("not available: ") + e.what();
+  }
+  const LinearSystem& sys = linear_system(c.key);
+  if (!sys.positive_definite && needs_spd(c.solver))
+    return c.solver + " needs a positive-definite matrix; this one is " + sys.definiteness_note;
+  return std::nullopt;
+}
+
+// Counters, the policy's record and the verdict of one repetition.
+void report_linear(benchmark::State& state, const LinearCase& c, const LinearSystem& sys, const Sample& s,
+                   const PeakMemory& memory, CaseProgress& progress) {
+  const double unknowns = static_cast<double>(c.key.unknowns());
+  state.counters["setup_s"] = s.setup_s;
+  state.counters["solve_s"] = s.solve_s;
+  state.counters["peak_MB"] = memory.peak_mb();
+  state.counters["extra_MB"] = memory.extra_mb();
+  state.counters["nonzeros"] = static_cast<double>(sys.K.nonZeros());
+  state.counters["assembly_s"] = sys.assembly_seconds;
+  const double residual = s.x.size() == sys.b.size() ? (sys.b - sys.K * s.x).norm() / sys.b.norm() : NAN;
+  const bool ok = s.set_up && s.solved && residual <= 1e-6;
+  progress.add(s.total(), memory.extra_mb(), ok);
+  record_run(c.series(), c.level, c.solver, {unknowns, progress.median(), progress.extra_mb, progress.all_ok});
+  if (!s.set_up) {
+    if (sys.positive_definite)  // on an indefinite matrix a failure says nothing about the method
+      record_setup_failure(c.solver, kind_tag(c.key), "set-up failed in BM_LinearSolve/" + c.key.tag() + "/" + c.solver + ": " + s.message);
+    return fail(state, "set-up failed: " + s.message);
+  }
+  state.counters["iterations"] = s.iterations;
+  state.counters["rel_residual"] = residual;
+  if (!s.history.empty() && c.level <= kHistoryLevels && progress.seconds.size() == 1)
+    add_history("BM_LinearSolve/" + c.key.tag() + "/" + c.solver, c.key.tag(), c.solver, unknowns, s.history);
+  if (sys.has_exact && s.x.size() == sys.b.size()) {
+    const auto err = solution_errors(sys, s.x);
+    state.counters["l2_error"] = err.l2;
+    state.counters["h1_error"] = err.h1;
+  }
+  const std::string spent = " (set-up " + std::to_string(s.setup_s) + " s, solve " + std::to_string(s.solve_s) + " s)";
+  if (!s.solved) fail(state, s.message + spent);
+  else if (!(residual <= 1e-6)) fail(state, "relative residual " + std::to_string(residual) + " after the solve" + spent);
+}
+
+void run_linear(benchmark::State& state, const LinearCase& c, CaseProgress& progress) {
+  state.counters["unknowns"] = static_cast<double>(c.key.unknowns());
   state.counters["order"] = c.key.order;
   state.counters["level"] = c.level;
   state.SetLabel(c.key.tag() + " " + c.solver);
-  if (auto why = sweep_skip_reason(c.series(), c.level, c.solver, unknowns, is_direct(c.solver))) return skip(state, *why);
-  std::unique_ptr<LinearSolver> first;
-  try {
-    start_runtime_for(c.solver);
-    first = make_solver(c.solver);
-  } catch (const std::exception& e) {
-    return skip(state, std::string("not available: ") + e.what());
-  }
-  const LinearSystem* system = nullptr;
-  try {
-    system = &linear_system(c.key);
-  } catch (const std::exception& e) {
-    return skip(state, std::string("the system could not be built: ") + e.what());
-  }
-  const LinearSystem& sys = *system;
-  if (!sys.positive_definite && needs_spd(c.solver))
-    return skip(state, c.solver + " needs a positive-definite matrix; this one is " + sys.definiteness_note);
-
-  for (auto _ : state) {
-    const PeakMemory memory;
-    std::vector<Sample> samples;
-    const double median = median_time([&] {
-      samples.push_back(solve_once(sys, first ? std::move(first) : make_solver(c.solver)));
-      return samples.back().total();
-    });
-    // The sample whose total is the median (every sample solves the same system).
-    const Sample* s = &samples.front();
-    for (const Sample& t : samples)
-      if (t.total() == median) s = &t;
-    state.SetIterationTime(median);
-    state.counters["setup_s"] = s->setup_s;
-    state.counters["solve_s"] = s->solve_s;
-    state.counters["samples"] = static_cast<double>(samples.size());
-    state.counters["peak_MB"] = memory.peak_mb();
-    state.counters["extra_MB"] = memory.extra_mb();
-    state.counters["nonzeros"] = static_cast<double>(sys.K.nonZeros());
-    state.counters["assembly_s"] = sys.assembly_seconds;
-    RunRecord record{unknowns, median, memory.extra_mb(), false};
-    if (!s->set_up) {
-      record_run(c.series(), c.level, c.solver, record);
-      if (sys.positive_definite)  // on an indefinite matrix a failure says nothing about the method
-        record_setup_failure(c.solver, cell_tag(c.key.cell, c.key.order) + std::string("/p") + std::to_string(c.key.order),
-                             "set-up failed in BM_LinearSolve/" + c.key.tag() + "/" + c.solver + ": " + s->message);
-      skip(state, "set-up failed: " + s->message);
-      continue;
+  if (!progress.decided) {
+    try {
+      progress.skip_reason = linear_skip_reason(c);
+    } catch (const std::exception& e) {  // the system could not be built: a failure, not a choice
+      return fail(state, std::string("the system could not be built: ") + e.what());
     }
-    state.counters["iterations"] = s->iterations;
-    const double residual = s->x.size() == sys.b.size() ? (sys.b - sys.K * s->x).norm() / sys.b.norm() : NAN;
-    state.counters["rel_residual"] = residual;
-    if (!s->history.empty() && c.level <= kHistoryLevels)
-      add_history("BM_LinearSolve/" + c.key.tag() + "/" + c.solver, c.key.tag(), c.solver, unknowns, s->history);
-    if (sys.has_exact && s->x.size() == sys.b.size()) {
-      const auto err = solution_errors(sys, s->x);
-      state.counters["l2_error"] = err.l2;
-      state.counters["h1_error"] = err.h1;
-    }
-    record.ok = s->solved && residual <= 1e-6;
-    record_run(c.series(), c.level, c.solver, record);
-    const std::string spent = " (set-up " + std::to_string(s->setup_s) + " s, solve " + std::to_string(s->solve_s) + " s)";
-    if (!s->solved) fail(state, s->message + spent);
-    else if (!(residual <= 1e-6)) fail(state, "relative residual " + std::to_string(residual) + " after the solve" + spent);
+    progress.decided = true;
   }
+  if (progress.skip_reason) return skip(state, *progress.skip_reason);
+  const LinearSystem& sys = linear_system(c.key);
+  std::unique_ptr<LinearSolver> solver = make_solver(c.solver);
+  const PeakMemory memory;
+  Sample s;
+  for (auto _ : state) s = solve_once(sys, *solver);  // the timed interval
+  report_linear(state, c, sys, s, memory, progress);
 }
 
 void register_case(const LinearCase& c) {
+  auto progress = std::make_shared<CaseProgress>();
   benchmark::RegisterBenchmark(("BM_LinearSolve/" + c.key.tag() + "/" + c.solver).c_str(),
-                               [c](benchmark::State& state) { run_linear(state, c); })
-      ->UseManualTime()
+                               [c, progress](benchmark::State& state) { run_linear(state, c, *progress); })
       ->Iterations(1)
-      ->Repetitions(1)
+      ->Repetitions(preset().repetitions_at(c.level))
+      ->MeasureProcessCPUTime()
       ->Unit(benchmark::kMillisecond);
 }
 

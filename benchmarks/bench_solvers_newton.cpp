@@ -9,7 +9,9 @@
 // (quick) / up to ~1e5 (full). (Every method x preconditioner meets the Newton
 // Hessians in the hessian-nh* linear sweeps; here the point is the whole solve.)
 //
-// Time: the whole static solve (set-up of the problem, all Newton iterations).
+// Time: the whole static solve (set-up of the problem, all Newton iterations),
+// one per repetition (Preset::repetitions, bench_common.hpp); cpu_time is the
+// process's CPU time (every thread) over the same interval.
 // Counters: newton_iterations, linear_iterations, load_steps, assembly_s (energy,
 // gradient and Hessian assembly), solve_s (everything else in the Newton loop:
 // factorisations / preconditioner set-ups and solves), assembly_share =
@@ -25,6 +27,7 @@
 
 #include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace hofem::bench {
@@ -81,63 +84,75 @@ NewtonSample solve_once(const hofem::MmsProblem& p, const NewtonCase& c) {
   return s;
 }
 
-void run_newton(benchmark::State& state, const NewtonCase& c) {
+// Why a configuration is not run, decided at its first repetition: the sweep's
+// policy, a set-up failure of its preconditioner or direct solver on this
+// element kind in the linear sweep, (quick preset) a Krylov method that was not
+// the fastest for its preconditioner on the projected Hessians, or a solver
+// this build cannot make.
+std::optional<std::string> newton_skip_reason(const NewtonCase& c) {
   const double unknowns = static_cast<double>(free_unknowns("mms-neohookean", CellType::Tetrahedron, c.mms.order, c.mms.n));
-  state.counters["unknowns"] = unknowns;
-  state.counters["order"] = c.mms.order;
-  state.counters["level"] = c.level;
-  state.counters["eisenstat_walker"] = c.eisenstat_walker;
-  state.SetLabel(c.tag() + " " + c.combo());
-  if (auto why = sweep_skip_reason(c.series(), c.level, c.combo(), unknowns, is_direct(c.solver), 3)) return skip(state, *why);
-  if (auto why = setup_failure(c.solver, "tet/p" + std::to_string(c.mms.order))) return skip(state, *why);
+  if (auto why = sweep_skip_reason(c.series(), c.level, c.combo(), unknowns, is_direct(c.solver), 3)) return why;
+  if (auto why = setup_failure(c.solver, "tet/p" + std::to_string(c.mms.order))) return why;
   if (!preset().newton_every_method && !is_direct(c.solver) && preset().keep_at(c.level) == 0 && !c.eisenstat_walker) {
     const std::string hessians = "hessian-nh-psd|tet|p" + std::to_string(c.mms.order);
     const auto best = fastest_of_component(hessians, c.level, c.solver);
     if (best && *best != c.solver)
-      return skip(state, *best + " solved the projected Neo-Hookean Hessian of this order and size fastest of the '" +
-                             c.solver.substr(c.solver.find('+') + 1) + "' combinations (preset " + preset().name + ")");
+      return *best + " solved the projected Neo-Hookean Hessian of this order and size fastest of the '" +
+             c.solver.substr(c.solver.find('+') + 1) + "' combinations (preset " + preset().name + ")";
   }
   try {
     start_runtime_for(c.solver);
     make_linear_solver(c.solver);
   } catch (const std::exception& e) {
-    return skip(state, std::string("not available: ") + e.what());
+    return std::string("not available: ") + e.what();
   }
+  return std::nullopt;
+}
+
+// Counters, the policy's record and the verdict of one repetition.
+void report_newton(benchmark::State& state, const NewtonCase& c, const hofem::MmsProblem& p, const NewtonSample& s,
+                   const PeakMemory& memory, CaseProgress& progress) {
+  const StaticReport& r = s.report;
+  state.counters["newton_iterations"] = r.newton_iterations;
+  state.counters["linear_iterations"] = r.linear_iterations;
+  state.counters["load_steps"] = r.load_steps;
+  state.counters["setup_s"] = r.setup_seconds;
+  state.counters["assembly_s"] = r.assembly_seconds;
+  state.counters["solve_s"] = r.solve_seconds;
+  state.counters["assembly_share"] = r.assembly_seconds / std::max(1e-300, r.assembly_seconds + r.solve_seconds);
+  state.counters["factorizations"] = r.factorizations;
+  state.counters["peak_MB"] = memory.peak_mb();
+  state.counters["extra_MB"] = memory.extra_mb();
+  if (!r.steps.empty() && r.steps.back().force_scale > 0.0)
+    state.counters["rel_residual"] = r.steps.back().final_residual / r.steps.back().force_scale;
+  const bool ok = s.error.empty() && r.converged;
+  if (ok) {
+    const auto err = hofem::mms_errors(p.mesh, p.ustar, s.u);
+    state.counters["l2_error"] = err.l2;
+    state.counters["h1_error"] = err.h1;
+  }
+  progress.add(s.seconds, memory.extra_mb(), ok);
+  const double unknowns = static_cast<double>(free_unknowns("mms-neohookean", CellType::Tetrahedron, c.mms.order, c.mms.n));
+  record_run(c.series(), c.level, c.combo(), {unknowns, progress.median(), progress.extra_mb, progress.all_ok});
+  if (!ok) fail(state, (s.error.empty() ? r.message : s.error) + " (after " + std::to_string(s.seconds) + " s)");
+}
+
+void run_newton(benchmark::State& state, const NewtonCase& c, CaseProgress& progress) {
+  state.counters["unknowns"] = static_cast<double>(free_unknowns("mms-neohookean", CellType::Tetrahedron, c.mms.order, c.mms.n));
+  state.counters["order"] = c.mms.order;
+  state.counters["level"] = c.level;
+  state.counters["eisenstat_walker"] = c.eisenstat_walker;
+  state.SetLabel(c.tag() + " " + c.combo());
+  if (!progress.decided) {
+    progress.skip_reason = newton_skip_reason(c);
+    progress.decided = true;
+  }
+  if (progress.skip_reason) return skip(state, *progress.skip_reason);
   const hofem::MmsProblem& p = mms_problem(c.mms);
-  for (auto _ : state) {
-    const PeakMemory memory;
-    std::vector<NewtonSample> samples;
-    const double median = median_time([&] {
-      samples.push_back(solve_once(p, c));
-      return samples.back().seconds;
-    });
-    const NewtonSample* s = &samples.front();
-    for (const NewtonSample& t : samples)
-      if (t.seconds == median) s = &t;
-    state.SetIterationTime(median);
-    const StaticReport& r = s->report;
-    state.counters["newton_iterations"] = r.newton_iterations;
-    state.counters["linear_iterations"] = r.linear_iterations;
-    state.counters["load_steps"] = r.load_steps;
-    state.counters["setup_s"] = r.setup_seconds;
-    state.counters["assembly_s"] = r.assembly_seconds;
-    state.counters["solve_s"] = r.solve_seconds;
-    state.counters["assembly_share"] = r.assembly_seconds / std::max(1e-300, r.assembly_seconds + r.solve_seconds);
-    state.counters["factorizations"] = r.factorizations;
-    state.counters["samples"] = static_cast<double>(samples.size());
-    state.counters["peak_MB"] = memory.peak_mb();
-    state.counters["extra_MB"] = memory.extra_mb();
-    if (!r.steps.empty() && r.steps.back().force_scale > 0.0)
-      state.counters["rel_residual"] = r.steps.back().final_residual / r.steps.back().force_scale;
-    const bool ok = s->error.empty() && r.converged;
-    if (ok) {
-      const auto err = hofem::mms_errors(p.mesh, p.ustar, s->u);
-      state.counters["l2_error"] = err.l2;
-      state.counters["h1_error"] = err.h1;
-    }
-    record_run(c.series(), c.level, c.combo(), {unknowns, median, memory.extra_mb(), ok});
-    if (!ok) fail(state, (s->error.empty() ? r.message : s->error) + " (after " + std::to_string(median) + " s)");
-  }
+  const PeakMemory memory;
+  NewtonSample s;
+  for (auto _ : state) s = solve_once(p, c);  // the timed interval
+  report_newton(state, c, p, s, memory, progress);
 }
 
 }  // namespace
@@ -157,11 +172,12 @@ void register_newton_sweep() {
           c.level = level;
           c.solver = solver;
           c.eisenstat_walker = ew;
+          auto progress = std::make_shared<CaseProgress>();
           benchmark::RegisterBenchmark(("BM_NewtonSolve/" + c.tag() + "/" + c.combo()).c_str(),
-                                       [c](benchmark::State& state) { run_newton(state, c); })
-              ->UseManualTime()
+                                       [c, progress](benchmark::State& state) { run_newton(state, c, *progress); })
               ->Iterations(1)
-              ->Repetitions(1)
+              ->Repetitions(preset().repetitions_at(level))
+              ->MeasureProcessCPUTime()
               ->Unit(benchmark::kMillisecond);
         }
 }

@@ -24,6 +24,9 @@ except ImportError as e:  # pragma: no cover - environment problem, say what is 
     sys.exit(f"plot_fcm: {e}; install the Debian packages python3-numpy python3-matplotlib "
              f"and run with /usr/bin/python3")
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_json import representatives  # noqa: E402
+
 
 def load(path):
     try:
@@ -257,9 +260,8 @@ def benchmark_runs(directory):
     path = directory / "benchmarks.json"
     if not path.exists():
         return []
-    return [b for b in load(path).get("benchmarks", [])
-            if b["name"].startswith(("BM_FcmQuadrature", "BM_ElasticStep"))
-            and b.get("aggregate_name", "median") == "median" and "error_occurred" not in b]
+    return [b for b in representatives(load(path))
+            if b["name"].startswith(("BM_FcmQuadrature", "BM_ElasticStep")) and "error_occurred" not in b]
 
 
 def plot_benchmarks(report, out_dir):

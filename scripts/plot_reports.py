@@ -20,6 +20,7 @@ except ImportError as e:  # pragma: no cover - environment problem, say what is 
              f"and run with /usr/bin/python3")
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_json import base_name, representatives  # noqa: E402
 from plot_solver_sweep import plot_sweep  # noqa: E402  (the solver sweep)
 
 RULE_NAME = re.compile(r"^(\w+) (\S+) \(n=(\d+), degree (\d+)\)$")
@@ -199,16 +200,9 @@ def plot_h1(report, out):
 
 
 def bench_medians(bench):
-    """name -> (median real time, unit, counters) from aggregate (or plain) entries."""
-    out = {}
-    for b in bench.get("benchmarks", []):
-        if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
-            continue
-        name = b.get("run_name", b["name"])
-        if name.endswith("/real_time"):  # UseRealTime() benchmarks carry this suffix
-            name = name[: -len("/real_time")]
-        out[name] = (b["real_time"], b["time_unit"], b)
-    return out
+    """name without Google Benchmark's suffixes -> (median real time, unit, entry):
+    each benchmark's median aggregate, or its single run (bench_json.representatives)."""
+    return {base_name(b.get("run_name", b["name"])): (b["real_time"], b["time_unit"], b) for b in representatives(bench)}
 
 
 def plot_bench(bench, out):
@@ -216,9 +210,9 @@ def plot_bench(bench, out):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
     for ax, prefix, title in ((axes[0], "BM_Tabulate", "tabulation over the degree-2p rule"),
                               (axes[1], "BM_BuildLagrangeBasis", "building the Lagrange basis")):
-        for cell_arg, cell in (("0", "triangle"), ("1", "tet")):
-            pts = sorted((int(n.split("/")[2]), v[0]) for n, v in med.items()
-                         if n.startswith(prefix + "/" + cell_arg + "/"))
+        for cell in ("triangle", "tet"):  # names BM_Tabulate/tet/order:3
+            pts = sorted((int(n.split("/")[2].split(":")[1]), v[0]) for n, v in med.items()
+                         if n.startswith(prefix + "/" + cell + "/order:"))
             if pts:
                 ax.semilogy([p for p, _ in pts], [t for _, t in pts], "o-", label=cell)
         ax.set_xlabel("order p")
@@ -248,8 +242,9 @@ def summary(report, bench):
         print(f"  {g:32} {ratio:9.3g}  {name}: {meas:.3g}")
     med = bench_medians(bench)
     print("\nbenchmarks (median of 3 repetitions):")
-    for key in ("BM_GaussLegendre/64", "BM_CollapsedRule/1/30", "BM_BuildLagrangeBasis/1/3", "BM_BuildLagrangeBasis/1/6",
-                "BM_Tabulate/1/2", "BM_Tabulate/1/3", "BM_Tabulate/1/6", "BM_CachedTabulation/3", "BM_EvaluateAtPoint/1/3"):
+    for key in ("BM_GaussLegendre/points:64", "BM_CollapsedRule/tet/degree:30", "BM_BuildLagrangeBasis/tet/order:3",
+                "BM_BuildLagrangeBasis/tet/order:6", "BM_Tabulate/tet/order:2", "BM_Tabulate/tet/order:3",
+                "BM_Tabulate/tet/order:6", "BM_CachedTabulation/tet/order:3", "BM_EvaluateAtPoint/tet/order:3"):
         if key in med:
             t, unit, _ = med[key]
             print(f"  {key:32} {t:12.4g} {unit}")
@@ -266,8 +261,8 @@ def plot_assembly(bench, out):
         width = 0.15
         for mi, mat in enumerate(materials):
             rates = []
-            for ki in range(len(kinds)):
-                b = med.get(f"BM_Assemble{what}/{ki}/{mi}")
+            for kind in kinds:  # names BM_AssembleHessian/tet10/neohookean
+                b = med.get(f"BM_Assemble{what}/{kind.lower()}/{mat}")
                 rates.append(b[2].get("qpoints_per_s", float("nan")) if b else float("nan"))
             ax.bar(np.arange(len(kinds)) + (mi - 2) * width, rates, width, label=mat)
         ax.set_xticks(np.arange(len(kinds)))
@@ -377,7 +372,8 @@ def print_kernel_floors(bench):
             print(f"| element Hessian {b.get('label', name)} | {b['GFLOPs']:.1f} GF/s "
                   f"| {b['fma_peak_GFLOPs']:.0f} GF/s | {b['GFLOPs'] / b['fma_peak_GFLOPs']:.1%} |")
         else:
-            print(f"| {b.get('label', name)} | {b['real_time']:.1f} ms, {b['bytes'] / 1e6:.0f} MB "
+            # one iteration: the counter (a difference of two timed CG runs, bench_bandwidth.cpp)
+            print(f"| {b.get('label', name)} | {b['seconds_per_iteration'] * 1e3:.1f} ms, {b['bytes'] / 1e6:.0f} MB "
                   f"| {b['floor_seconds'] * 1e3:.1f} ms at {b['triad_all_threads_GBps']:.1f} GB/s | {b['floor_ratio']:.2f} |")
 
 

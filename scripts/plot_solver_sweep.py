@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Plots and tables of the solver sweep from solver_benchmarks.json and
+"""Plots and tables of the solver sweep from solver_benchmarks.json,
+solver_skips.json (the configurations skipped on purpose, with the reason) and
 solver_histories.json (written by build/bin/hofem_bench, see reports/README.md).
 Used by plot_reports.py; on its own, for the full preset's directory:
 
@@ -16,6 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from bench_json import load_skips  # noqa: E402
 from solver_sweep_tables import best_per_size, parse, print_tables, series_key, series_label, sweep_runs  # noqa: E402
 
 METHOD_STYLE = {"cg": "-", "cr": "--", "minres": "-.", "gmres": ":"}
@@ -213,7 +215,7 @@ def plot_sweep(directory):
     if not path.exists():
         return []
     with open(path) as f:
-        runs = parse(json.load(f))
+        runs = parse(json.load(f), load_skips(directory / "solver_skips.json"))
     made = []
     hist_path = directory / "solver_histories.json"
     if hist_path.exists():

@@ -4,7 +4,8 @@ verdicts on the sweep's targets, printed as Markdown. Used by plot_solver_sweep.
 import math
 import re
 
-SUFFIX = re.compile(r"/(iterations|repeats|min_time|min_warmup_time|threads):[^/]+|/manual_time|/real_time")
+from bench_json import base_name, representatives
+
 SWEEP_KINDS = ("BM_LinearSolve", "BM_NewtonSolve")
 TIME_UNITS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 
@@ -28,25 +29,29 @@ def current_name(run_name, names_version):
     return "/".join(parts)
 
 
-def parse(bench):
+def skipped_entries(skips):
+    """The skips file's configurations (bench_json.load_skips) as entries of the
+    form older files kept them in among the results."""
+    return [{"name": s["name"], "run_name": s["name"], "error_occurred": True, "error_message": "skipped: " + s["reason"],
+             "real_time": 0.0, "time_unit": "ms"} for s in skips]
+
+
+def parse(bench, skips=()):
     """Runs of the sweep and the bandwidth kernels: the benchmark's JSON entry plus
     kind, problem, cell, order, n, combo, seconds, status ('ok' / 'skipped' /
-    'failed'). Of repeated benchmarks only the median aggregate is kept. Names are
+    'failed'). Of repeated benchmarks only the median aggregate is kept
+    (bench_json.representatives); `skips` (bench_json.load_skips) adds the
+    configurations skipped on purpose, which today's files keep apart. Names are
     today's (OLD_PRECONDITIONER_NAMES maps an older file's)."""
     version = int(bench.get("context", {}).get("preconditioner_names", "1"))
     if any("eigen-ict" in b["name"] for b in bench.get("benchmarks", [])):
         version = 2  # written between the rename and the context key: already today's names
     entries = [dict(b, name=current_name(b["name"], version),
                     run_name=current_name(b.get("run_name", b["name"]), version))
-               for b in bench.get("benchmarks", [])]
-    aggregated = {b.get("run_name") for b in entries if b.get("run_type") == "aggregate"}
+               for b in representatives(bench) + skipped_entries(skips)]
     runs = []
     for b in entries:
-        if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
-            continue
-        if b.get("run_type") != "aggregate" and b.get("run_name") in aggregated:
-            continue
-        parts = SUFFIX.sub("", b.get("run_name", b["name"])).split("/")
+        parts = base_name(b.get("run_name", b["name"])).split("/")
         r = dict(b)
         r["kind"] = parts[0]
         if parts[0] in SWEEP_KINDS + ("BM_SpMV", "BM_CgIteration") and len(parts) >= 5:
@@ -54,7 +59,9 @@ def parse(bench):
                      combo="/".join(parts[5:]))
         msg = b.get("error_message", "")
         r["status"] = "ok" if not b.get("error_occurred") else ("skipped" if msg.startswith("skipped") else "failed")
-        r["seconds"] = b["real_time"] * TIME_UNITS[b.get("time_unit", "ns")]
+        # One CG iteration is a difference of two timed runs (BM_CgIteration): a
+        # counter; the entry's own time is the longer run's.
+        r["seconds"] = b.get("seconds_per_iteration", b["real_time"] * TIME_UNITS[b.get("time_unit", "ns")])
         runs.append(r)
     return runs
 
@@ -112,7 +119,7 @@ def print_best_table(runs, kind, problem):
 
 
 def print_status(runs):
-    print("\n### Runs made, skipped (with the reason in the JSON) and failed\n")
+    print("\n### Runs made, skipped (with the reason in the skips file) and failed\n")
     print("| benchmark | problem | ok | skipped | failed |")
     print("|---|---|---:|---:|---:|")
     counts = {}
