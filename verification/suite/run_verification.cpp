@@ -51,7 +51,7 @@ Report run_all_checks(const SuiteOptions& options) {
   Report report = run_fast_checks();
   if (options.solvers) timed(report, "solvers", [&] { add_solver_checks(report); });
   if (options.convergence == "none") return report;
-  timed(report, "manufactured solutions", [&] { add_convergence_checks(report, options.convergence); });
+  timed(report, "manufactured solutions", [&] { add_convergence_checks(report, options.convergence, options.convergence_table); });
   // The finite cell method's figures (Longva et al. 2020 Fig. 5, 6, 10): seconds (ci) to minutes (full).
   timed(report, "finite cell Fig. 5", [&] { add_fcm_conditioning_checks(report, options.convergence); });
   timed(report, "finite cell Fig. 6", [&] { add_fcm_rigid_motion_checks(report); });

@@ -1,5 +1,6 @@
 #pragma once
 #include "report.hpp"
+#include "study/convergence_table.hpp"
 
 #include <string>
 
@@ -10,6 +11,8 @@ struct SuiteOptions {
   std::string convergence = "ci";
   /// Linear solvers and preconditioners (solver_checks.hpp; starts MPI for BoomerAMG).
   bool solvers = true;
+  /// If set, receives one row per run of the convergence study.
+  ConvergenceTable* convergence_table = nullptr;
 };
 
 /// Fast checks: quadrature, bases, materials, elements, patch tests, partition quality (seconds).
