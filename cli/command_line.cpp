@@ -44,8 +44,11 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   auto& mo = out.mms;
   auto* mms = app.add_subcommand("mms", "Solve a manufactured-solution problem on the unit cube and print its errors");
   mms->add_option("--problem", mo.problem, "linear or neohookean")->required();
-  mms->add_option("--order", mo.order, "Element order (tet: >= 1; hex: 1 = Hex8, 2 = Hex20)")->required();
-  mms->add_option("--n", mo.n, "Cubes per side (>= 1)")->required();
+  mms->add_option("--order", mo.order,
+                  "Element order (tet: >= 1; hex: 1 = Hex8, 2 = Hex20), or a comma list (1,2,3): every order x n "
+                  "combination runs, printed as a table with observed rates (--json: one JSON object per line)")
+      ->required();
+  mms->add_option("--n", mo.n, "Cubes per side (>= 1), or a comma list (2,4,8)")->required();
   mms->add_option("--cell", mo.cell, "tet or hex")->capture_default_str();
   mms->add_flag("--perturbed", mo.perturbed, "Randomly perturb interior vertices (non-uniform mesh)");
   mms->add_option("--solver", mo.solver,
@@ -72,6 +75,9 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   verify->add_option("--junit", vo.junit, "Also write the checks as JUnit XML to this file (one testcase per check)");
   verify->add_flag("--list", vo.list, "List the families of checks (id, ctest label, groups) and exit");
   verify->add_option("--convergence", vo.convergence, "Manufactured-solution study: none, ci or full")->capture_default_str();
+  verify->add_option("--convergence-table", vo.convergence_table,
+                     "Write the study's table (a row per run: errors, rates, unknowns, seconds, iterations) to "
+                     "PREFIX.csv and PREFIX.json (default: convergence.* beside --out)");
 
   auto& ro = out.run;
   auto* run = app.add_subcommand("run", "Run a scene file: VTU frames, a .pvd index and stats.json into --out");

@@ -1,5 +1,7 @@
 #include "commands.hpp"
 
+#include "number_list.hpp"
+#include "study/convergence_table.hpp"
 #include "study/manufactured_solution.hpp"
 
 #include "basis/reference_basis.hpp"
@@ -229,64 +231,135 @@ int run_mesh(const MeshOptions& o) {
   return 0;
 }
 
+namespace {
+
+// Every (order, n) of an mms command is checked before the first run starts.
+void check_mms_cases(const MmsOptions& o, CellType cell, const std::vector<int>& orders, const std::vector<int>& sizes) {
+  for (int n : sizes)
+    if (n < 1) throw UsageError(fmt::format("--n must be >= 1, got {}", n));
+  for (int order : orders)
+    if (order < 1 || (cell == CellType::Hexahedron && order > 2))
+      throw UsageError(fmt::format("--order: tet needs >= 1, hex 1 or 2; got {}", order));
+  apply_limits(o.limits);
+  for (int order : orders) check_order(order);
+  for (int order : orders)
+    for (int n : sizes) check_cube_size(n, cell, order, "--n");
+  if (!o.vtu.empty() && orders.size() * sizes.size() > 1)
+    throw UsageError("--vtu writes one run's solution: give one --order and one --n");
+  if (!o.vtu.empty()) ensure_parent_directory(o.vtu);
+  if ((o.krylov != "pcg" || o.amg != "amg" || o.rigid_body_modes) && !o.distributed)
+    throw UsageError("--krylov, --amg and --rigid-body-modes choose the distributed solver: add --distributed");
+}
+
+// The solver of the options, parsed and validated once for every run.
+SolverSpec mms_solver(const MmsOptions& o) {
+  SolverSpec spec;
+  try {
+    spec = SolverSpec::parse(o.solver);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(fmt::format("--solver: {}", e.what()));
+  }
+  spec.distributed = {o.krylov, o.amg, o.rigid_body_modes};
+  try {
+    validate(spec.distributed);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return spec;
+}
+
+nlohmann::json mms_json(const MmsOptions& o, const MmsCase& c, const MmsResult& r, int ranks) {
+  return {{"problem", o.problem}, {"cell", std::string(name(c.cell))}, {"order", c.order}, {"n", c.n},
+          {"perturbed", o.perturbed}, {"h", r.h}, {"cells", r.cells}, {"nodes", r.nodes},
+          {"dofs", r.dofs}, {"l2_error", r.l2_error}, {"h1_error", r.h1_error},
+          {"newton_iterations", r.newton_iterations}, {"converged", r.converged},
+          {"linear_solver", r.linear_solver}, {"linear_solver_reason", r.linear_solver_reason},
+          {"linear_iterations", r.linear_iterations}, {"newton_rtol", r.newton_rtol},
+          {"newton_residuals", r.newton_residuals},
+          {"quadrature_degree", r.quadrature_degree}, {"error_quadrature_degree", r.error_degree},
+          {"setup_seconds", r.setup_seconds}, {"assembly_seconds", r.assembly_seconds},
+          {"solve_seconds", r.solve_seconds}, {"total_seconds", r.total_seconds},
+          {"message", r.message}, {"distributed", o.distributed}, {"ranks", ranks},
+          {"distributed_solver", o.distributed ? nlohmann::json{{"krylov", o.krylov}, {"amg", o.amg}, {"rigid_body_modes", o.rigid_body_modes}} : nlohmann::json()},
+          {"per_rank", o.distributed ? to_json(r.ranks) : nlohmann::json::array()}};
+}
+
+void print_mms_run(const MmsOptions& o, const MmsCase& c, const MmsResult& r) {
+  fmt::print("{} {} order {} n={}{}: {} cells, {} DOFs\n  L2 error {:.6e}   H1 error {:.6e}\n  Newton {} ({})\n"
+             "  solver {} ({}), residual tolerance {:.1e}, {} linear iterations\n"
+             "  setup {:.3f} s, assembly {:.3f} s, solve {:.3f} s, total {:.3f} s\n",
+             o.problem, name(c.cell), c.order, c.n, o.perturbed ? " perturbed" : "", r.cells, r.dofs, r.l2_error, r.h1_error,
+             r.newton_iterations, r.message, r.linear_solver, r.linear_solver_reason, r.newton_rtol, r.linear_iterations, r.setup_seconds, r.assembly_seconds, r.solve_seconds, r.total_seconds);
+}
+
+// The readable table of a sweep: a header, then a row per run as it finishes.
+void print_mms_table_header(const MmsOptions& o, CellType cell) {
+  fmt::print("{} {}{}, solver {}; rates against the previous n of the same order\n", o.problem, name(cell),
+             o.perturbed ? " perturbed" : "", o.solver);
+  fmt::print("{:>5} {:>4} {:>8} {:>9} {:>12} {:>7} {:>12} {:>7} {:>6} {:>7} {:>9} {:>9} {:>9}  {}\n", "order", "n", "h",
+             "DOFs", "L2 error", "rate", "H1 error", "rate", "Newton", "linear", "assembly", "solve", "total", "solver");
+  fmt::print("{:>5} {:>4} {:>8} {:>9} {:>12} {:>7} {:>12} {:>7} {:>6} {:>7} {:>9} {:>9} {:>9}\n", "", "", "[side]", "",
+             "", "", "", "", "its", "its", "[s]", "[s]", "[s]");
+}
+
+void print_mms_table_row(const ConvergenceRow& row) {
+  const auto rate = [](const std::optional<double>& v) { return v ? fmt::format("{:.2f}", *v) : std::string("-"); };
+  fmt::print("{:>5} {:>4} {:>8.5f} {:>9} {:>12.4e} {:>7} {:>12.4e} {:>7} {:>6} {:>7} {:>9.3f} {:>9.3f} {:>9.3f}  {}{}\n",
+             row.order, row.n, row.h, row.unknowns, row.l2_error, rate(row.rate_l2), row.h1_error, rate(row.rate_h1),
+             row.newton_iterations, row.linear_iterations, row.assembly_seconds, row.solve_seconds, row.total_seconds,
+             row.linear_solver, row.converged ? "" : "  (NOT converged)");
+  std::fflush(stdout);  // a row as soon as its run ends: the larger runs take minutes
+}
+
+// The rank of this process and the number of ranks (1, 0 unless distributed).
+std::pair<int, int> mms_ranks(bool distributed) {
+  int rank = 0, ranks = 1;
+  if (distributed) {  // the problem started MPI
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  }
+  return {rank, ranks};
+}
+
+}  // namespace
+
 int run_mms(const MmsOptions& o) {
   const CellType cell = parse_cell_or_throw(o.cell);
   if (cell != CellType::Tetrahedron && cell != CellType::Hexahedron)
     throw UsageError(fmt::format("--cell: mms runs on tet or hex meshes, got '{}'", o.cell));
   if (o.problem != "linear" && o.problem != "neohookean")
     throw UsageError(fmt::format("--problem: unknown problem '{}' (valid: linear, neohookean)", o.problem));
-  if (o.n < 1) throw UsageError(fmt::format("--n must be >= 1, got {}", o.n));
-  if (o.order < 1 || (cell == CellType::Hexahedron && o.order > 2))
-    throw UsageError(fmt::format("--order: tet needs >= 1, hex 1 or 2; got {}", o.order));
-  apply_limits(o.limits);
-  check_order(o.order);
-  check_cube_size(o.n, cell, o.order, "--n");
-  if (!o.vtu.empty()) ensure_parent_directory(o.vtu);
-  if ((o.krylov != "pcg" || o.amg != "amg" || o.rigid_body_modes) && !o.distributed)
-    throw UsageError("--krylov, --amg and --rigid-body-modes choose the distributed solver: add --distributed");
-  hofem::MmsCase c{o.problem, cell, o.order, o.n, o.perturbed, {}, o.vtu};
-  c.distributed = o.distributed;
-  try {
-    c.solver = SolverSpec::parse(o.solver);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(fmt::format("--solver: {}", e.what()));
-  }
-  c.solver.distributed = {o.krylov, o.amg, o.rigid_body_modes};
-  try {
-    validate(c.solver.distributed);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-  const hofem::MmsResult r = hofem::run_mms(c);
-  int rank = 0, ranks = 1;
-  if (o.distributed) {  // the problem started MPI
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-  }
-  if (rank != 0) return r.converged ? 0 : 1;  // every rank holds the same result; one prints it
-  if (o.json) {
-    fmt::print("{}\n", nlohmann::json{{"problem", o.problem}, {"cell", std::string(name(cell))}, {"order", o.order}, {"n", o.n},
-                                     {"perturbed", o.perturbed}, {"h", r.h}, {"cells", r.cells}, {"nodes", r.nodes},
-                                     {"dofs", r.dofs}, {"l2_error", r.l2_error}, {"h1_error", r.h1_error},
-                                     {"newton_iterations", r.newton_iterations}, {"converged", r.converged},
-                                     {"linear_solver", r.linear_solver}, {"linear_solver_reason", r.linear_solver_reason},
-                                     {"linear_iterations", r.linear_iterations}, {"newton_rtol", r.newton_rtol},
-                                     {"newton_residuals", r.newton_residuals},
-                                     {"quadrature_degree", r.quadrature_degree}, {"error_quadrature_degree", r.error_degree},
-                                     {"setup_seconds", r.setup_seconds}, {"assembly_seconds", r.assembly_seconds},
-                                     {"solve_seconds", r.solve_seconds}, {"total_seconds", r.total_seconds},
-                                     {"message", r.message}, {"distributed", o.distributed}, {"ranks", ranks},
-                                     {"distributed_solver", o.distributed ? nlohmann::json{{"krylov", o.krylov}, {"amg", o.amg}, {"rigid_body_modes", o.rigid_body_modes}} : nlohmann::json()},
-                                     {"per_rank", o.distributed ? to_json(r.ranks) : nlohmann::json::array()}}
-                            .dump());
-  } else {
-    fmt::print("{} {} order {} n={}{}: {} cells, {} DOFs\n  L2 error {:.6e}   H1 error {:.6e}\n  Newton {} ({})\n"
-               "  solver {} ({}), residual tolerance {:.1e}, {} linear iterations\n"
-               "  setup {:.3f} s, assembly {:.3f} s, solve {:.3f} s, total {:.3f} s\n",
-               o.problem, name(cell), o.order, o.n, o.perturbed ? " perturbed" : "", r.cells, r.dofs, r.l2_error, r.h1_error,
-               r.newton_iterations, r.message, r.linear_solver, r.linear_solver_reason, r.newton_rtol, r.linear_iterations, r.setup_seconds, r.assembly_seconds, r.solve_seconds, r.total_seconds);
-  }
-  return r.converged ? 0 : 1;
+  const std::vector<int> sizes = parse_number_list(o.n, "--n");
+  const std::vector<int> orders = parse_number_list(o.order, "--order");
+  check_mms_cases(o, cell, orders, sizes);
+  const SolverSpec solver = mms_solver(o);
+  // One run prints as it always has; several print a table (or JSON lines) with
+  // the observed rates, each n against the previous n of the same order.
+  const bool sweep = orders.size() * sizes.size() > 1;
+  ConvergenceTable table;
+  bool all_converged = true;
+  for (int order : orders)
+    for (int n : sizes) {
+      hofem::MmsCase c{o.problem, cell, order, n, o.perturbed, solver, o.vtu};
+      c.distributed = o.distributed;
+      const hofem::MmsResult r = hofem::run_mms(c);
+      all_converged = all_converged && r.converged;
+      const ConvergenceRow& row = table.add(c, r);
+      const auto [rank, ranks] = mms_ranks(o.distributed);
+      if (rank != 0) continue;  // every rank holds the same result; one prints it
+      if (sweep && !o.json && table.rows().size() == 1) print_mms_table_header(o, cell);
+      if (!o.json && !sweep) print_mms_run(o, c, r);
+      if (!o.json && sweep) print_mms_table_row(row);
+      if (!o.json) continue;
+      nlohmann::json j = mms_json(o, c, r, ranks);
+      if (sweep) {  // JSON lines: one object per run
+        j["rate_l2"] = row.rate_l2 ? nlohmann::json(*row.rate_l2) : nlohmann::json(nullptr);
+        j["rate_h1"] = row.rate_h1 ? nlohmann::json(*row.rate_h1) : nlohmann::json(nullptr);
+      }
+      fmt::print("{}\n", j.dump());
+      std::fflush(stdout);
+    }
+  return all_converged ? 0 : 1;
 }
 
 int run_scene_file(const RunOptions& o) {

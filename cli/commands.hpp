@@ -45,8 +45,8 @@ int run_mesh(const MeshOptions& o);
 
 struct MmsOptions {
   std::string problem;
-  int order = 1;
-  int n = 4;
+  std::string order = "1";  ///< one order or a comma list ("1,2,3"): every order x n runs
+  std::string n = "4";      ///< cubes per side, one or a comma list
   std::string cell = "tet";
   bool perturbed = false;
   std::string solver = "auto";
@@ -67,6 +67,9 @@ struct VerifyOptions {
   std::string convergence = "ci";
   std::string junit;  ///< JUnit XML path, empty: none
   bool list = false;  ///< print the families (id, label, groups) and exit
+  /// The convergence study's tidy table goes to PREFIX.csv and PREFIX.json;
+  /// empty: "convergence" in the directory of `out`.
+  std::string convergence_table;
 };
 // `hofem verify` is run by its own executable, hofem-verify
 // (verification/verify_main.cpp), so that this one does not link the

@@ -7,6 +7,8 @@
 //                                                     element quality report
 //   hofem mms --problem linear --order 2 --n 8 [--cell tet|hex] [--json]
 //                                                     manufactured-solution errors
+//                                                     (--order 1,2,3 --n 2,4,8: every
+//                                                     combination, with observed rates)
 //   hofem verify [--out reports/verification.json]    the verification suite
 //
 // Bad arguments print one line, "hofem: error: ...", and exit with status 2;

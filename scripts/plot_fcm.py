@@ -14,11 +14,10 @@ import re
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 try:
-    import matplotlib
-    matplotlib.use("Agg")
+    import plot_style  # sets the Agg back end before pyplot
     import matplotlib.pyplot as plt
-    import matplotlib.ticker
     import numpy as np
 except ImportError as e:  # pragma: no cover - environment problem, say what is missing
     sys.exit(f"plot_fcm: {e}; install the Debian packages python3-numpy python3-matplotlib "
@@ -110,16 +109,14 @@ def plot_fig5(report, out_dir):
                     fontsize=8, va="top")
         ax.invert_xaxis()  # eps -> 0 to the right, as the sweep runs
         ax.set_title(f"$\\kappa(SA)$, $A = M + \\Delta t^2 K(u)$, {title}", fontsize=10)
-        ax.set_xlabel("smallest volume fraction ($\\epsilon^3$)")
+        ax.set_xlabel("smallest volume fraction $\\epsilon^3$ [-]")
         ax.grid(True, which="both", alpha=0.3)
-    axes[0].set_ylabel("$\\kappa = \\max|\\lambda| / \\min|\\lambda|$")
+        plot_style.log_ticks(ax)
+    axes[0].set_ylabel("$\\kappa = \\max|\\lambda| / \\min|\\lambda|$ [-]")
     axes[0].legend(fontsize=8, loc="center left")
     fig.suptitle("Seed Fig. 5: 4x4x4 tet grid on $[0, 4/3]^3$, embedded box $[0, 1+\\epsilon/3]^3$, "
                  "Stable Neo-Hookean (A indefinite)", fontsize=10)
-    fig.tight_layout()
-    out = out_dir / "fcm_fig5_conditioning.png"
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+    out = plot_style.save(fig, out_dir / "fcm_fig5_conditioning.png", dpi=120)
     print_fig5_table(curves)
     return out
 
@@ -170,8 +167,8 @@ def plot_fig4(report, out_dir):
         a.semilogy(*zip(*values), marker="o" if kind == "initial" else "s",
                    linestyle="--" if kind == "initial" else "-", label=f"{geometry}, {kind}")
     a.axhline(1e-12, color="k", linewidth=0.6, linestyle=":", label="threshold 1e-12")
-    a.set_xlabel("strength m")
-    a.set_ylabel("max relative error over monomials of degree <= m")
+    a.set_xlabel("strength m [-]")
+    a.set_ylabel("max relative error, monomials of degree <= m [-]")
     a.legend(fontsize=8)
     a.grid(True, which="both", alpha=0.3)
     for (geometry, kind), values in sorted(points.items()):
@@ -180,16 +177,13 @@ def plot_fig4(report, out_dir):
                    label=f"{geometry}, {kind}")
     ms = np.arange(1, 11)
     b.semilogy(ms, [(m + 1) * (m + 2) * (m + 3) / 6 for m in ms], "k:", label="M = C(m+3, 3) per cell")
-    b.set_xlabel("strength m")
-    b.set_ylabel("quadrature points (summed over cells)")
+    b.set_xlabel("strength m [-]")
+    b.set_ylabel("quadrature points, summed over cells [-]")
     b.legend(fontsize=8)
     b.grid(True, which="both", alpha=0.3)
     fig.suptitle("Seed Fig. 4: monomials over a rotated cuboid in the reference hex, clipped vs LP-simplified rules",
                  fontsize=10)
-    fig.tight_layout()
-    out = out_dir / "fcm_fig4_simplification.png"
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+    out = plot_style.save(fig, out_dir / "fcm_fig4_simplification.png", dpi=120)
     return out
 
 
@@ -207,13 +201,11 @@ def plot_fig6(report, out_dir):
     values = [max(d[1], 1e-17) for d in drift]
     ax.barh(names, values, color=["tab:red" if "coarse" in n else "tab:blue" for n in names])
     ax.set_xscale("log")
-    ax.set_xlabel("centre-of-mass drift after half a turn / body size")
+    ax.set_xlabel("centre-of-mass drift after half a turn / body size [-]")
+    ax.set_ylabel("discretisation")
     ax.set_title("Seed Fig. 6: a half tube spinning about its centre of mass (implicit Euler, 50 steps)", fontsize=10)
     ax.grid(True, which="both", axis="x", alpha=0.3)
-    fig.tight_layout()
-    out = out_dir / "fcm_fig6_centre_of_mass.png"
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+    out = plot_style.save(fig, out_dir / "fcm_fig6_centre_of_mass.png", dpi=120)
     return out
 
 
@@ -232,24 +224,28 @@ def plot_fig10(report, out_dir):
         return None
     fig, ax = plt.subplots(figsize=(6.5, 4.8))
     for name, values in sorted(series.items()):
-        values.sort()
-        ax.loglog(*zip(*values), marker="s" if "Hex20" in name else "o",
+        values.sort(reverse=True)  # coarse to fine: the last segment is the finest pair
+        order = 2 if "Hex20" in name else 1  # Hex8: order 1, Hex20: order 2 (plot_style's order colours)
+        hs, errors = zip(*values)
+        colour = plot_style.order_colour(order)
+        ax.loglog(hs, errors, marker="s" if order == 2 else "o", color=colour,
                   linestyle="-" if name.startswith("FCM") else "--", label=name)
+        if len(values) > 1:
+            rate = np.log(errors[-2] / errors[-1]) / np.log(hs[-2] / hs[-1])
+            # The two staircase lines run close together: Hex8's rate goes below its line.
+            plot_style.annotate_rate(ax, hs, errors, rate, colour, below=order == 1 and not name.startswith("FCM"))
     h = np.array(sorted({v[0] for values in series.values() for v in values}))
     for rate, anchor in ((1, 0.3), (2, 0.08), (3, 0.004)):
         ax.loglog(h, anchor * (h / h[-1]) ** rate, "k:", linewidth=0.7)
         ax.text(h[-1], anchor * 1.1, f"O(h^{rate})", fontsize=8)
-    ax.set_xlabel("h")
-    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())  # two or three grids: no crowded labels
-    ax.set_xticks(h, [f"1/{round(1 / v)}" for v in h])
-    ax.set_ylabel("relative L2 error (manufactured solution)")
-    ax.set_title("Seed Fig. 10: half ball in hex grids, FCM vs staircase FEM", fontsize=10)
-    ax.legend(fontsize=8)
+    ax.set_xlabel("h = 1/n, hex grid spacing [model length; ball radius 1/2]")
+    plot_style.h_ticks(ax, [round(1 / v) for v in h])
+    ax.set_ylabel("relative L2 error (manufactured solution) [-]")
+    ax.set_title("Seed Fig. 10: half ball in hex grids, FCM vs staircase FEM\n(numbers: rate of the finest pair)",
+                 fontsize=10)
+    ax.legend(fontsize=plot_style.MIN_LEGEND_FONTSIZE)
     ax.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    out = out_dir / "fcm_fig10_convergence.png"
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+    out = plot_style.save(fig, out_dir / "fcm_fig10_convergence.png", dpi=120)
     return out
 
 
@@ -281,7 +277,9 @@ def plot_benchmarks(report, out_dir):
                f"{q['simplification_cpu_s']:.1f} s CPU", ha="center", va="bottom", fontsize=8)
     a.set_xticks(x, labels)
     a.set_yscale("log")
-    a.set_ylabel("stiffness quadrature points")
+    a.set_ylim(top=max([q["points_before"] for q in quad] + [1]) * 8)  # room for the labels above the bars
+    a.set_xlabel("embedded geometry")
+    a.set_ylabel("stiffness quadrature points [-]")
     a.set_title("quadrature generation + simplification", fontsize=10)
     a.legend(fontsize=8)
     names = [s.get("label", s["name"]) for s in step]
@@ -290,12 +288,10 @@ def plot_benchmarks(report, out_dir):
     for bar, s in zip(bars, step):
         b.text(bar.get_width(), bar.get_y() + bar.get_height() / 2,
                f" {s['cg_iterations_per_step']:.0f} CG its", va="center", fontsize=8)
-    b.set_xlabel("ms per implicit Euler step (median)")
+    b.set_xlabel("time per implicit Euler step, median [ms]")
+    b.set_ylabel("discretisation")
     b.set_title("FEM vs FCM per step (seed §6.5)", fontsize=10)
-    fig.tight_layout()
-    out = out_dir / "fcm_benchmarks.png"
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+    out = plot_style.save(fig, out_dir / "fcm_benchmarks.png", dpi=120)
     return out
 
 

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""Turns reports/verification.json and reports/benchmarks.json into PNG plots and
-prints a short summary table; with reports/solver_benchmarks.json (the solver
+"""Turns reports/verification.json, reports/convergence.json (the manufactured-solution
+study's table, through scripts/plot_convergence.py) and reports/benchmarks.json into PNG
+plots (their look shared through scripts/plot_style.py) and prints a short summary table; with reports/solver_benchmarks.json (the solver
 sweep) also its plots, tables and target verdicts (scripts/plot_solver_sweep.py). Run with Debian's interpreter (python3-numpy,
 python3-matplotlib): /usr/bin/python3 scripts/plot_reports.py reports
 """
@@ -21,6 +22,8 @@ except ImportError as e:  # pragma: no cover - environment problem, say what is 
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_json import base_name, representatives  # noqa: E402
+import plot_convergence  # noqa: E402  (mms_convergence.png, mms_h1.png from convergence.json)
+import plot_style  # noqa: E402
 from plot_solver_sweep import plot_sweep  # noqa: E402  (the solver sweep)
 
 RULE_NAME = re.compile(r"^(\w+) (\S+) \(n=(\d+), degree (\d+)\)$")
@@ -63,18 +66,17 @@ def plot_points(report, out):
         bound = [math.comb(int(kk) + dim, dim) for kk in k]
         ax.semilogy(deg, bound, ":", color="k", label="lower bound dim P_{p/2}")
         ax.set_title(f"{cell}: quadrature points vs degree")
-        ax.set_xlabel("degree of exactness p")
-        ax.set_ylabel("points")
+        ax.set_xlabel("degree of exactness p [-]")
+        ax.set_ylabel("quadrature points [-]")
+        plot_style.log_ticks(ax)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+    plot_style.save(fig, out, dpi=120)
 
 
 def plot_exactness(report, out):
     rows = [r for r in report["rows"] if r["group"] == "quadrature.exactness"]
-    fig, ax = plt.subplots(figsize=(8, 4.5))
+    fig, ax = plt.subplots(figsize=(12, 5))
     by_family = {}
     threshold = None
     for r in rows:
@@ -93,14 +95,13 @@ def plot_exactness(report, out):
         ax.semilogy(d, e, markers[i % len(markers)], ms=4, color=colours[i % len(colours)], label=key)
     if threshold:
         ax.axhline(threshold, color="r", ls="--", label=f"threshold {threshold:g}")
-    ax.set_xlabel("degree of exactness")
-    ax.set_ylabel("max relative monomial error")
+    ax.set_xlabel("degree of exactness [-]")
+    ax.set_ylabel("max relative monomial error [-]")
     ax.set_title("Quadrature exactness: every rule, every monomial up to its degree")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=6, ncol=2)
-    fig.tight_layout()
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+    # Many rule families: the legend goes beside the axes, in a readable size.
+    ax.legend(fontsize=plot_style.MIN_LEGEND_FONTSIZE, ncol=2, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    plot_style.save(fig, out, dpi=120)
 
 
 def plot_conditioning(report, out):
@@ -112,91 +113,12 @@ def plot_conditioning(report, out):
         p = [int(n.split()[-1]) for n in names]
         ax.semilogy(p, [ortho[n] for n in names], marker + "-", label=f"{cell}: orthonormal (Dubiner)")
         ax.semilogy(p, [mono.get(n, float("nan")) for n in names], marker + "--", label=f"{cell}: monomial (thesis 4.28)")
-    ax.set_xlabel("Lagrange order p")
-    ax.set_ylabel("cond_2 of the Vandermonde matrix")
+    ax.set_xlabel("Lagrange order p [-]")
+    ax.set_ylabel("cond_2 of the Vandermonde matrix [-]")
     ax.set_title("Why the basis is built over orthonormal polynomials")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
-
-
-def mms_series(report):
-    """{(problem, cell, order, mesh): [(n, h, dofs, l2, h1, seconds)]} from the measurements."""
-    values = {}
-    for m in report.get("measurements", []):
-        if m["group"] in ("mms.l2_error", "mms.h1_error", "mms.dofs", "mms.seconds"):
-            values.setdefault(m["name"], {})[m["group"]] = m["value"]
-    series = {}
-    for name, v in values.items():
-        problem, cell, order, mesh, n = name.split("|")
-        n = int(n[1:])
-        series.setdefault((problem, cell, int(order[1:]), mesh), []).append(
-            (n, 1.0 / n, v.get("mms.dofs"), v.get("mms.l2_error"), v.get("mms.h1_error"), v.get("mms.seconds")))
-    for k in series:
-        series[k].sort()
-    return series
-
-
-def plot_convergence(report, out):
-    series = mms_series(report)
-    if not series:
-        return False
-    problems = sorted({k[0] for k in series})
-    fig, axes = plt.subplots(len(problems), 3, figsize=(15, 4.2 * len(problems)), squeeze=False)
-    for row, problem in enumerate(problems):
-        ax_h, ax_dof, ax_time = axes[row]
-        for (prob, cell, order, mesh), pts in sorted(series.items()):
-            if prob != problem:
-                continue
-            label = f"{cell} p={order}{' perturbed' if mesh == 'perturbed' else ''}"
-            style = "--" if mesh == "perturbed" else "-"
-            h = np.array([p[1] for p in pts])
-            dofs = np.array([p[2] for p in pts], dtype=float)
-            l2 = np.array([p[3] for p in pts])
-            secs = np.array([p[5] for p in pts])
-            line, = ax_h.loglog(h, l2, "o" + style, label=label)
-            # Reference slope h^(p+1) through the finest point.
-            ax_h.loglog(h, l2[-1] * (h / h[-1]) ** (order + 1), ":", color=line.get_color(), alpha=0.6)
-            ax_dof.loglog(dofs, l2, "o" + style, color=line.get_color(), label=label)
-            ax_time.loglog(secs, l2, "o" + style, color=line.get_color(), label=label)
-        ax_h.set_title(f"{problem}: L2 error vs h (dotted: h^(p+1))")
-        ax_h.set_xlabel("h")
-        ax_dof.set_title(f"{problem}: L2 error vs DOFs")
-        ax_dof.set_xlabel("free DOFs")
-        ax_time.set_title(f"{problem}: work-precision (direct solver)")
-        ax_time.set_xlabel("wall time per solve [s]")
-        for ax in (ax_h, ax_dof, ax_time):
-            ax.set_ylabel("L2 error")
-            ax.grid(True, which="both", alpha=0.3)
-        ax_h.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
-    return True
-
-
-def plot_h1(report, out):
-    series = mms_series(report)
-    if not series:
-        return False
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for (prob, cell, order, mesh), pts in sorted(series.items()):
-        h = np.array([p[1] for p in pts])
-        h1 = np.array([p[4] for p in pts])
-        line, = ax.loglog(h, h1, "o-" if mesh == "uniform" else "s--", ms=4,
-                          label=f"{prob} {cell} p={order} {mesh}")
-        ax.loglog(h, h1[-1] * (h / h[-1]) ** order, ":", color=line.get_color(), alpha=0.5)
-    ax.set_xlabel("h")
-    ax.set_ylabel("H1-seminorm error")
-    ax.set_title("H1 error vs h (dotted: h^p)")
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=6)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
-    return True
+    plot_style.save(fig, out, dpi=120)
 
 
 def bench_medians(bench):
@@ -215,14 +137,13 @@ def plot_bench(bench, out):
                          if n.startswith(prefix + "/" + cell + "/order:"))
             if pts:
                 ax.semilogy([p for p, _ in pts], [t for _, t in pts], "o-", label=cell)
-        ax.set_xlabel("order p")
+        ax.set_xlabel("Lagrange order p [-]")
         ax.set_ylabel("median time [us]")
         ax.set_title(title)
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend()
-    fig.tight_layout()
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+        ax.legend(fontsize=plot_style.LEGEND_FONTSIZE)
+        plot_style.log_ticks(ax)
+    plot_style.save(fig, out, dpi=120)
 
 
 def summary(report, bench):
@@ -268,31 +189,13 @@ def plot_assembly(bench, out):
         ax.set_xticks(np.arange(len(kinds)))
         ax.set_xticklabels(kinds)
         ax.set_yscale("log")
-        ax.set_ylabel("quadrature points / s")
+        ax.set_xlabel("element")
+        ax.set_ylabel("throughput [quadrature points / s]")
         ax.set_title(f"{what} assembly throughput")
         ax.grid(True, axis="y", which="both", alpha=0.3)
-    axes[0].legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(out, dpi=110)
-    plt.close(fig)
-
-
-def print_mms_table(report):
-    series = mms_series(report)
-    if not series:
-        return
-    print("\nmanufactured solutions (L2 / H1 errors, observed rates on consecutive pairs):")
-    for (prob, cell, order, mesh), pts in sorted(series.items()):
-        print(f"  {prob} {cell} p={order} {mesh}")
-        prev = None
-        for n, h, dofs, l2, h1, secs in pts:
-            rates = ""
-            if prev:
-                rl2 = math.log(prev[3] / l2) / math.log(prev[1] / h)
-                rh1 = math.log(prev[4] / h1) / math.log(prev[1] / h)
-                rates = f"  rates L2 {rl2:5.2f}  H1 {rh1:5.2f}"
-            print(f"    n={n:3d} dofs={int(dofs):8d}  L2 {l2:.3e}  H1 {h1:.3e}  {secs:7.2f} s{rates}")
-            prev = (n, h, dofs, l2, h1)
+        plot_style.log_ticks(ax, "y")
+    axes[0].legend(fontsize=plot_style.MIN_LEGEND_FONTSIZE)
+    plot_style.save(fig, out, dpi=110)
 
 
 def plot_time_to_error(reports):
@@ -314,25 +217,23 @@ def plot_time_to_error(reports):
     if not series:
         return
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
-    colours = {1: "tab:green", 2: "tab:blue", 3: "tab:red"}
     for (problem, order, solver, label), pts in sorted(series.items()):
         ax = axes[0 if problem == "linear" else 1]
         pts.sort(key=lambda p: p[2])
         ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-" if solver == "auto" else "s--",
-                  color=colours.get(order, "black"), label=label, alpha=1.0 if solver == "auto" else 0.6)
+                  color=plot_style.order_colour(order), label=label, alpha=1.0 if solver == "auto" else 0.6)
         for t, e, n, b in pts:  # n, and for auto the solver it chose
             used = b["label"].split("|")[1]
             ax.annotate(f"n={n}" + (f" {used}" if solver == "auto" else ""), (t, e), textcoords="offset points",
-                        xytext=(4, 3), fontsize=6)
+                        xytext=(4, 3), fontsize=7)
     for ax, title in zip(axes, ("linear elasticity (one solve)", "Neo-Hookean (Newton)")):
         ax.set_xlabel("time to solution [s], median of 3\n(DOF map, pattern, load, assembly, solver set-up, solve)")
-        ax.set_ylabel("L2 error against u*")
+        ax.set_ylabel("L2 error against u* [-]")
         ax.set_title(f"work-precision, manufactured cube: {title}", fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(reports / "time_to_error.png", dpi=110)
-    plt.close(fig)
+        ax.legend(fontsize=plot_style.MIN_LEGEND_FONTSIZE)
+        plot_style.log_ticks(ax)
+    plot_style.save(fig, reports / "time_to_error.png", dpi=110)
     print("\n## Time to error (BM_TimeToError medians, 2 cores)\n")
     print("| case | solver used | unknowns | total s | setup / assembly / solve s | solver set-up s (us/unknown) "
           "| iterations (linear / Newton) | L2 error | reference L2 | diff | peak MB |")
@@ -397,18 +298,20 @@ def plot_scaling(path):
             print(f"| P{order} | {n} | {b['unknowns']:.0f} | {b['total_s']:.2f} | {b['us_per_unknown']:.2f} "
                   f"| {b['linear_iterations']:.0f} | {b['peak_mb']:.0f} | {b['peak_bytes_per_unknown']:.0f} |")
         u = [b["unknowns"] for _, b in pts]
-        ax[0].semilogx(u, [b["us_per_unknown"] for _, b in pts], "o-", label=f"linear P{order}")
-        ax[1].semilogx(u, [b["peak_bytes_per_unknown"] / 1e3 for _, b in pts], "o-", label=f"linear P{order}")
-    ax[0].set_xlabel("free unknowns")
-    ax[0].set_ylabel("time to solution per unknown (us)")
-    ax[1].set_xlabel("free unknowns")
-    ax[1].set_ylabel("peak memory per unknown (kB)")
+        colour = plot_style.order_colour(order)
+        ax[0].semilogx(u, [b["us_per_unknown"] for _, b in pts], "o-", color=colour, label=f"linear P{order}")
+        ax[1].semilogx(u, [b["peak_bytes_per_unknown"] / 1e3 for _, b in pts], "o-", color=colour,
+                       label=f"linear P{order}")
+    ax[0].set_xlabel("free unknowns [-]")
+    ax[0].set_ylabel("time to solution per unknown [us]")
+    ax[1].set_xlabel("free unknowns [-]")
+    ax[1].set_ylabel("peak memory per unknown [kB]")
     for a in ax:
         a.grid(True, which="both", alpha=0.3)
-        a.legend()
+        a.legend(fontsize=plot_style.LEGEND_FONTSIZE)
+        plot_style.log_ticks(a)
     fig.suptitle("Linear cube, CG + p-multigrid, 2 threads: cost per unknown with size")
-    fig.tight_layout()
-    fig.savefig(path.with_suffix(".png"), dpi=120)
+    plot_style.save(fig, path.with_suffix(".png"), dpi=120)
     p3 = {n: b for n, b in series.get(3, [])}
     if 12 in p3 and 24 in p3:
         ratio = p3[24]["us_per_unknown"] / p3[12]["us_per_unknown"]
@@ -426,11 +329,12 @@ def main():
     plot_exactness(report, reports / "quadrature_exactness.png")
     plot_conditioning(report, reports / "basis_conditioning.png")
     plot_bench(bench, reports / "benchmark_foundation.png")
-    plot_convergence(report, reports / "mms_convergence.png")
-    plot_h1(report, reports / "mms_h1.png")
     plot_assembly(bench, reports / "benchmark_assembly.png")
     summary(report, bench)
-    print_mms_table(report)
+    if (reports / "convergence.json").exists():  # the study's tidy table (hofem verify)
+        plot_convergence.main(reports / "convergence.json", reports)
+    else:
+        print("\nplot_reports: no convergence.json (hofem verify --convergence none?): no mms plots")
     print_kernel_floors(bench)
     plot_time_to_error(reports)  # BM_TimeToError
     plot_sweep(reports)  # solver_benchmarks.json and solver_histories.json, if the sweep ran

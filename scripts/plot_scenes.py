@@ -7,19 +7,14 @@ import json
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_style  # noqa: E402  (sets the Agg back end before pyplot)
 import matplotlib.pyplot as plt  # noqa: E402
 
 
 def save(fig, out, name, dpi):
-    """Lays out, writes and closes the figure; returns its path."""
-    fig.tight_layout()
-    path = os.path.join(out, name)
-    fig.savefig(path, dpi=dpi)
-    plt.close(fig)
-    return path
+    """Lays out, writes and closes the figure (plot_style.save); returns its path."""
+    return plot_style.save(fig, os.path.join(out, name), dpi=dpi)
 
 
 def load(directory):
@@ -55,8 +50,13 @@ def plot_drop(runs, out):
     ax[1].set(xlabel="t [s]", ylabel="lowest point z [m] (floor at 0)", title="Contact (penalty floor)")
     for a in ax:
         a.grid(alpha=0.3)
-        a.legend(fontsize=8)
+        a.legend(fontsize=plot_style.MIN_LEGEND_FONTSIZE)
     return save(fig, out, "scene_drop.png", 120)
+
+
+# One colour per kind of energy in every panel (a scene without gravity would
+# otherwise shift the colour cycle and paint "total" in gravity's green).
+ENERGY_COLOURS = {"kinetic": "#0072B2", "elastic": "#D55E00", "gravity": "#009E73", "total": "black"}
 
 
 def plot_energies(runs, out):
@@ -68,14 +68,15 @@ def plot_energies(runs, out):
     fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.0 * rows), squeeze=False)
     for ax, name in zip(axes.flat, names):
         run = runs[name]
-        for key in ("kinetic", "elastic", "gravity", "total"):
+        for key, colour in ENERGY_COLOURS.items():
             t, e = series(run, lambda s, k=key: s["energy"][k] if "energy" in s else float("nan"))
             if any(abs(v) > 0 for v in e):
-                ax.plot(t, e, label=key)
+                ax.plot(t, e, color=colour, label=key)
         ax.set_title(f"{name} ({run['integrator']})", fontsize=9)
         ax.set_xlabel("t [s]", fontsize=8)
+        ax.set_ylabel("energy [J]", fontsize=8)  # scenes are in SI units (m, kg, s, Pa)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=plot_style.MIN_LEGEND_FONTSIZE)
     for ax in list(axes.flat)[len(names):]:
         ax.axis("off")
     return save(fig, out, "scene_energies.png", 110)
@@ -92,9 +93,9 @@ def plot_iterations(runs, out):
         if any(lin):
             ax.plot(t, lin, label=f"{name}: CG iterations per step")
         ax.plot(t2, newton, ls="--", label=f"{name}: Newton iterations per step")
-    ax.set(xlabel="t [s]", ylabel="iterations per time step", title="Solver work per step")
+    ax.set(xlabel="t [s]", ylabel="iterations per time step [-]", title="Solver work per step")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=plot_style.MIN_LEGEND_FONTSIZE)
     return save(fig, out, "scene_iterations.png", 120)
 
 

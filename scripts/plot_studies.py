@@ -12,14 +12,16 @@ import json
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_style  # noqa: E402  (sets the Agg back end before pyplot)
 import matplotlib.pyplot as plt  # noqa: E402
 
 MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">"]
 # One colour per family, fixed by the family's order of appearance (colour-blind safe, Okabe-Ito).
 COLOURS = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000", "#F0E442"]
+# Scenes are in SI units (m, kg, s): the metrics' units (norms over the body's volume).
+METRIC_UNITS = {"surface_rms": "m", "surface_max": "m", "displacement_rms": "m", "relative_l2": "-",
+                "relative_h1": "-", "l2": "m^(5/2)", "h1": "m^(3/2)"}
 
 
 def plot(study, path):
@@ -66,8 +68,7 @@ def plot(study, path):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("time per step, median [s]")
-    unit = "[length]" if metric != "relative_l2" else "[-]"
-    ax.set_ylabel(f"{metric.replace('_', ' ')}, max over frames {unit}")
+    ax.set_ylabel(f"{metric.replace('_', ' ')}, max over frames [{METRIC_UNITS.get(metric, 'm')}]")
     ax.set_title(f'{study["name"]}: error against time per step\n(open markers: faceting floor at t = 0; labels: unknowns)',
                  fontsize=10)
     ys = [r["metric"] for r in runs] + list(study["thresholds"])
@@ -76,7 +77,8 @@ def plot(study, path):
         ys.append(richardson["estimate"][metric])
     ax.set_ylim(min(ys) / 3, max(ys) * 2)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower left")
+    ax.legend(fontsize=plot_style.MIN_LEGEND_FONTSIZE, loc="lower left")
+    plot_style.log_ticks(ax)
     if iterative:
         it = axes[0][1]
         for t in study["thresholds"]:
@@ -88,10 +90,9 @@ def plot(study, path):
         it.set_ylabel(ax.get_ylabel())
         it.set_title(f'{study["name"]}: error against iterations per step\n(runs that solve iteratively)', fontsize=10)
         it.grid(True, which="both", alpha=0.3)
-        it.legend(fontsize=8, loc="lower left")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+        it.legend(fontsize=plot_style.MIN_LEGEND_FONTSIZE, loc="lower left")
+        plot_style.log_ticks(it)
+    plot_style.save(fig, path, dpi=110)
 
 
 def main(reports):

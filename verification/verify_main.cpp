@@ -1,11 +1,14 @@
 // hofem-verify: the verification suite behind `hofem verify` (cli/main.cpp
-// hands its arguments over), writing reports/verification.json. Its options
-// are parsed by the same command-line code as every other subcommand.
+// hands its arguments over), writing reports/verification.json and, when the
+// manufactured-solution study runs, its tidy table beside it
+// (reports/convergence.csv and .json; --convergence-table PREFIX moves them).
+// Its options are parsed by the same command-line code as every other subcommand.
 #include "command_line.hpp"
 #include "io/atomic_file.hpp"
 #include "junit_report.hpp"
 #include "provenance/provenance.hpp"
 #include "run_verification.hpp"
+#include "study/convergence_table.hpp"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -34,10 +37,23 @@ int list_families() {
   return 0;
 }
 
+// The convergence table's files: PREFIX.csv and PREFIX.json, PREFIX by default
+// "convergence" in the directory of the report (--out).
+void write_convergence_table(const hofem::ConvergenceTable& table, const hofem::cli::VerifyOptions& o) {
+  const std::string prefix = !o.convergence_table.empty()
+                                 ? o.convergence_table
+                                 : (std::filesystem::path(o.out).parent_path() / "convergence").string();
+  write_file(prefix + ".csv", table.to_csv());
+  write_file(prefix + ".json", table.to_json().dump(1) + "\n");
+  if (!o.quiet) fmt::print("convergence table: {} rows -> {}.csv, {}.json\n", table.rows().size(), prefix, prefix);
+}
+
 int run_verify(const hofem::cli::VerifyOptions& o) {
   using namespace hofem::verification;
   if (o.list) return list_families();
-  const SuiteOptions options{.convergence = o.convergence, .group = o.group, .progress = true};
+  hofem::ConvergenceTable table;
+  const SuiteOptions options{
+      .convergence = o.convergence, .group = o.group, .progress = true, .convergence_table = &table};
   if (selected_families(options).empty()) {
     fmt::print(stderr, "hofem: error: {}\n", no_families_message(options));
     return 2;
@@ -49,6 +65,7 @@ int run_verify(const hofem::cli::VerifyOptions& o) {
   j["context"] = hofem::provenance_context(o.convergence);
   write_file(o.out, j.dump(1) + "\n");
   if (!o.junit.empty()) write_file(o.junit, junit_xml(report, "hofem.verify"));
+  if (!table.rows().empty()) write_convergence_table(table, o);
   if (!o.quiet) {
     fmt::print("{}", report.summary_table());
     for (const auto& r : report.rows())

@@ -2,6 +2,7 @@
 // Manufactured-solution convergence studies: error tables and observed
 // rates on the finest pair of each sequence, asserted against the theoretical
 // rates L2 >= p + 1 - 0.15 and H1 >= p - 0.15.
+#include "study/convergence_table.hpp"
 #include "study/manufactured_solution.hpp"
 #include "report.hpp"
 
@@ -23,7 +24,8 @@ struct ConvergenceSeries {
 std::vector<ConvergenceSeries> convergence_series(const std::string& preset);
 
 /// Runs every series; adds one measurement per run (errors, DOFs, seconds) and
-/// one check per observed rate.
-void add_convergence_checks(Report& report, const std::string& preset);
+/// one check per observed rate; with `table`, also one row per run to it (the
+/// tidy table `hofem verify` writes beside its report).
+void add_convergence_checks(Report& report, const std::string& preset, ConvergenceTable* table = nullptr);
 
 }  // namespace hofem::verification

@@ -28,7 +28,7 @@ namespace {
 
 // A family whose checks take no preset.
 template <void (*Add)(Report&)>
-void plain(Report& r, const std::string&) {
+void plain(Report& r, const SuiteOptions&) {
   Add(r);
 }
 
@@ -48,23 +48,23 @@ std::vector<CheckFamily> make_families() {
       {"partition", "partition", {"partition."}, "fast", false, 0.1, 0.1, plain<add_partition_checks>},
       {"solvers", "solvers", {"solvers."}, "mpi", false, 8.8, 8.8, plain<add_solver_checks>},
       {"mms", "manufactured solutions", {"mms."}, "convergence", true, 60.0, 90.5,
-       [](Report& r, const std::string& c) { add_convergence_checks(r, c); }},
+       [](Report& r, const SuiteOptions& o) { add_convergence_checks(r, o.convergence, o.convergence_table); }},
       // The finite cell method's figures (Longva et al. 2020 Fig. 5, 6, 10): seconds (ci) to minutes (full).
       {"fig5", "finite cell Fig. 5", {"embedded.fig5"}, "convergence", true, 10.0, 56.0,
-       [](Report& r, const std::string& c) { add_fcm_conditioning_checks(r, c); }},
+       [](Report& r, const SuiteOptions& o) { add_fcm_conditioning_checks(r, o.convergence); }},
       {"fig6", "finite cell Fig. 6", {"embedded.fig6"}, "convergence", true, 0.4, 0.4,
        plain<add_fcm_rigid_motion_checks>},
       {"fig10", "finite cell Fig. 10", {"embedded.fig10"}, "convergence", true, 20.0, 81.6,
-       [](Report& r, const std::string& c) { add_fcm_convergence_checks(r, c); }},
+       [](Report& r, const SuiteOptions& o) { add_fcm_convergence_checks(r, o.convergence); }},
       {"study", "scene error measures", {"study"}, "convergence", true, 12.0, 12.0, plain<add_study_checks>},
   };
 }
 
 // Runs one family and records its wall time as a measurement of the group
 // "timing" (the main job's budget is accounted per family: DEVELOPERS.md).
-void run_timed(Report& report, const CheckFamily& f, const std::string& convergence) {
+void run_timed(Report& report, const CheckFamily& f, const SuiteOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
-  f.add(report, convergence);
+  f.add(report, options);
   report.measure("timing", f.title, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
                  "wall seconds of this family of checks");
 }
@@ -86,7 +86,7 @@ bool family_selected(const CheckFamily& family, const std::string& prefix) {
 Report run_fast_checks() {
   Report report;
   for (const CheckFamily& f : check_families())
-    if (f.label == "fast") run_timed(report, f, "none");
+    if (f.label == "fast") run_timed(report, f, SuiteOptions{.convergence = "none"});
   return report;
 }
 
@@ -118,7 +118,7 @@ Report run_checks(const SuiteOptions& options) {
   for (std::size_t k = 0; k < chosen.size(); ++k) {
     const CheckFamily& f = *chosen[k];
     if (progress) progress->stage(fmt::format("[{}/{}] {}", k + 1, chosen.size(), f.title), done / total);
-    run_timed(report, f, options.convergence);
+    run_timed(report, f, options);
     done += nominal(f);
   }
   if (progress) progress->done(fmt::format("{} checks, {} failed", report.rows().size(), report.failures()));

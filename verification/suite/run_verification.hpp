@@ -5,6 +5,7 @@
 // only the families that can write a group starting with P; ctest runs each
 // family as its own test (verify.<id>, labelled fast, mpi or convergence).
 #include "report.hpp"
+#include "study/convergence_table.hpp"
 
 #include <functional>
 #include <string>
@@ -20,6 +21,9 @@ struct SuiteOptions {
   std::string group;
   /// Progress lines on stderr (provenance/progress.hpp) while the families run.
   bool progress = false;
+  /// If set, receives one row per run of the convergence study (the tidy
+  /// table `hofem verify` writes beside its report).
+  ConvergenceTable* convergence_table = nullptr;
 };
 
 struct CheckFamily {
@@ -31,7 +35,8 @@ struct CheckFamily {
   /// Wall seconds measured on the 2-core reference machine with the ci and the
   /// full preset: the progress lines' estimate of what remains, nothing else.
   double ci_seconds = 1.0, full_seconds = 1.0;
-  std::function<void(Report&, const std::string& convergence)> add;
+  /// Adds the family's rows; reads the preset (and the convergence table) from the options.
+  std::function<void(Report&, const SuiteOptions&)> add;
 };
 
 /// Every family, in the order the suite runs them.
