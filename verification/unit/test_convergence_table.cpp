@@ -43,12 +43,11 @@ TEST(ConvergenceTable, RatesAgainstThePreviousRowOfTheSameSeries) {
   ConvergenceTable table;
   // Series interleaved: order 1 and order 2 of the linear problem, and a
   // perturbed order 1, added in turns; each row's rate must ignore the others.
-  for (int n : {2, 4, 8})
-    for (int order : {1, 2}) {
-      table.add(case_of("linear", order, n), run_with_exact_rates(order, n));
-      table.add(case_of("linear", 1, n, true), run_with_exact_rates(1, n));
-    }
-  ASSERT_EQ(table.rows().size(), 12u);
+  for (int n : {2, 4, 8}) {
+    for (int order : {1, 2}) table.add(case_of("linear", order, n), run_with_exact_rates(order, n));
+    table.add(case_of("linear", 1, n, true), run_with_exact_rates(1, n));
+  }
+  ASSERT_EQ(table.rows().size(), 9u);
   for (const ConvergenceRow& row : table.rows()) {
     if (row.n == 2) {
       EXPECT_FALSE(row.rate_l2.has_value()) << row.mesh << " p" << row.order;
