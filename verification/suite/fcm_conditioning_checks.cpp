@@ -1,5 +1,7 @@
 #include "fcm_conditioning_checks.hpp"
 
+#include "dense_eigenvalues.hpp"
+
 #include "assembly/assembler.hpp"
 #include "assembly/dof_map.hpp"
 #include "embedded/embedded_quadrature.hpp"
@@ -93,13 +95,12 @@ Spectrum symmetric_spectrum(const Eigen::MatrixXd& B) {
   Spectrum s;
   s.computed = true;
   s.size = static_cast<int>(B.rows());
-  const Eigen::MatrixXd symmetric = 0.5 * (B + B.transpose());
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(symmetric, Eigen::EigenvaluesOnly);
-  if (eig.info() != Eigen::Success) {
-    s.error = "the symmetric eigen-solver did not converge";
+  const std::optional<Eigen::VectorXd> eigenvalues = symmetric_eigenvalues(0.5 * (B + B.transpose()));
+  if (!eigenvalues) {
+    s.error = "the symmetric eigen-solver (LAPACK dsyevd) did not converge";
     return s;
   }
-  const Eigen::VectorXd& lambda = eig.eigenvalues();
+  const Eigen::VectorXd& lambda = *eigenvalues;
   s.negative = static_cast<int>((lambda.array() < 0.0).count());
   s.smallest = lambda.cwiseAbs().minCoeff();
   s.largest = lambda.cwiseAbs().maxCoeff();
