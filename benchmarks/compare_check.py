@@ -6,7 +6,7 @@ Google Benchmark's own tools/compare.py, give rows only for runs that were made.
 
 Runs hofem_bench twice on a small filter: the solver sweep on the indefinite
 Hessian at ~1e3 unknowns, order 1 (where the policy skips the methods that need
-a positive-definite matrix, and pmg's set-up fails: both kinds of non-result)
+a positive-definite matrix, and pmg, which needs order >= 2: both skipped on purpose)
 and a few foundation benchmarks, each with HOFEM_BENCH_SKIPS_OUT. Then
 compare.py (--dump_to_json) on the two result files. Fails unless
   - both runs recorded configurations skipped on purpose (otherwise this test
