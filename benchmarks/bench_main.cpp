@@ -46,10 +46,11 @@ int main(int argc, char** argv) {
   // Every provenance key as "hofem_<key>": Google Benchmark's own
   // "library_build_type" describes Debian's libbenchmark, not hofem.
   const char* preset = std::getenv("HOFEM_BENCH_PRESET");  // the solver sweep's (bench_common.hpp)
-  // (Held in a variable: a range-for over items() of a temporary would outlive it.)
+  // (Held in a variable: a range-for over items() of a temporary would read it after its end.)
   const nlohmann::json provenance = hofem::provenance_context(preset ? preset : "");
-  for (const auto& [key, value] : provenance.items())
-    benchmark::AddCustomContext("hofem_" + key, value.is_string() ? value.get<std::string>() : value.dump());
+  for (const auto& [key, value] : provenance.items())  // "hofem_version" keeps its name
+    benchmark::AddCustomContext(key.starts_with("hofem_") ? key : "hofem_" + key,
+                                value.is_string() ? value.get<std::string>() : value.dump());
   benchmark::AddCustomContext("library_build_type_means", "the build of Debian's libbenchmark; hofem's is hofem_build_type");
   // Version of the preconditioner names: in files without this key (before
   // version 2), "ic0" named Eigen's incomplete Cholesky, today's "eigen-ict";
