@@ -47,14 +47,14 @@ std::vector<CheckFamily> make_families() {
       {"loads", "embedded loads", {"embedded.loads"}, "fast", false, 1.8, 1.8, plain<add_fcm_load_checks>},
       {"partition", "partition", {"partition."}, "fast", false, 0.1, 0.1, plain<add_partition_checks>},
       {"solvers", "solvers", {"solvers."}, "mpi", false, 8.8, 8.8, plain<add_solver_checks>},
-      {"mms", "manufactured solutions", {"mms."}, "convergence", true, 60.0, 90.5,
+      {"mms", "manufactured solutions", {"mms."}, "convergence", true, 60.0, 82.0,
        [](Report& r, const SuiteOptions& o) { add_convergence_checks(r, o.convergence, o.convergence_table); }},
       // The finite cell method's figures (Longva et al. 2020 Fig. 5, 6, 10): seconds (ci) to minutes (full).
-      {"fig5", "finite cell Fig. 5", {"embedded.fig5"}, "convergence", true, 10.0, 56.0,
+      {"fig5", "finite cell Fig. 5", {"embedded.fig5"}, "convergence", true, 10.0, 24.0,
        [](Report& r, const SuiteOptions& o) { add_fcm_conditioning_checks(r, o.convergence); }},
       {"fig6", "finite cell Fig. 6", {"embedded.fig6"}, "convergence", true, 0.4, 0.4,
        plain<add_fcm_rigid_motion_checks>},
-      {"fig10", "finite cell Fig. 10", {"embedded.fig10"}, "convergence", true, 20.0, 57.0,
+      {"fig10", "finite cell Fig. 10", {"embedded.fig10"}, "convergence", true, 20.0, 53.0,
        [](Report& r, const SuiteOptions& o) { add_fcm_convergence_checks(r, o.convergence); }},
       {"study", "scene error measures", {"study"}, "convergence", true, 12.0, 12.0, plain<add_study_checks>},
   };
