@@ -3,8 +3,12 @@
 // the built-in ones). Every key is validated before any work starts: unknown
 // keys, wrong types and out-of-range values raise SceneError naming the file and
 // the key path ("cantilever.json: material.poisson = 0.5 is out of range (-1, 0.5)").
+// The reference of every key (type, default, range) is SCENE_FORMAT.md, generated
+// by scripts/schema_docs.py from the JSON Schema scene.schema.json beside this
+// file; ctest schema.* checks that schema against this parser.
 //
 // {
+//   "$schema": "../../core/scene/scene.schema.json",  (optional: for editors; ignored)
 //   "name": "cantilever",
 //   "mesh": {"box": {"min": [0,0,0], "max": [4,1,1], "cells": [8,2,2]}, "cell": "tet", "order": 2}
 //        or {"tube": {"r_in": 0.5, "r_out": 1, "height": 3, "cells": [2, 16, 8]}, "cell": "hex", "order": 2}

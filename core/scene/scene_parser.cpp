@@ -207,8 +207,10 @@ Scene parse_validated(const json& j, const std::string& origin) {
   Scene s;
   s.file = origin;
   const Field root(j, "", origin);
-  root.keys({"name", "mesh", "material", "integrator", "dt", "duration", "mass", "lumping", "solver", "gravity",
-             "damping", "boundary", "floor", "initial_velocity", "output", "embedded"});
+  root.keys({"$schema", "name", "mesh", "material", "integrator", "dt", "duration", "mass", "lumping", "solver",
+             "gravity", "damping", "boundary", "floor", "initial_velocity", "output", "embedded"});
+  // "$schema": an editor's pointer to scene.schema.json (completion, checks while typing); not used here.
+  if (root.has("$schema")) root.at("$schema").string();
   s.name = root.has("name") ? root.at("name").string() : std::filesystem::path(origin).stem().string();
   parse_mesh(root.at("mesh"), s);
   if (root.has("embedded")) parse_embedded(root.at("embedded"), root.at("mesh"), s);

@@ -66,7 +66,10 @@ Study parse_study(const std::string& text, const std::string& origin) {
   check_nesting(text, origin);
   const nlohmann::json j = parse_json(text, origin, "the study");
   const Field root(j, "", origin, "the study");
-  root.keys({"name", "scene", "overrides", "frames", "metric", "thresholds", "subdivisions", "reference", "runs"});
+  root.keys({"$schema", "name", "scene", "overrides", "frames", "metric", "thresholds", "subdivisions", "reference",
+             "runs"});
+  // "$schema": an editor's pointer to study.schema.json; not used here.
+  if (root.has("$schema")) root.at("$schema").string();
   Study s;
   s.file = origin;
   s.name = run_name(root.at("name"));

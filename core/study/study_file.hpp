@@ -3,8 +3,10 @@
 // given as overrides of the scene's keys (scene.hpp: SceneOverrides - the one
 // override mechanism, so every discretisation is validated exactly like a scene
 // file). hofem study runs them all and sets run time against error (study.hpp).
+// JSON Schema: study.schema.json beside this file (SCENE_FORMAT.md documents it).
 //
 // {
+//   "$schema": "../../core/study/study.schema.json",   (optional: for editors; ignored)
 //   "name": "twisting-cylinder",                        (the output folder's name)
 //   "scene": "../scenes/twisting-cylinder-p2.json",     (relative to the study file)
 //   "overrides": ["duration=0.5"],                      (every run and the reference; optional)

@@ -51,7 +51,7 @@ TEST(Scenes, InvalidScenesNameTheFileAndTheKey) {
     std::string text, expected;
   };
   const Case cases[] = {
-      {with("\"integrator\"", "\"integrater\""), "t.json: key 'integrater' is unknown (valid: boundary, damping, dt,"},
+      {with("\"integrator\"", "\"integrater\""), "t.json: key 'integrater' is unknown (valid: $schema, boundary, damping, dt,"},
       {with("\"young\"", "\"youngs\""), "t.json: key 'material.youngs' is unknown (valid: density, model, poisson, young)"},
       {with("\"poisson\": 0.3", "\"poisson\": 0.5"), "t.json: material.poisson = 0.5 is out of range (-1, 0.5)"},
       {with("\"young\": 1e5", "\"young\": -3"), "t.json: material.young = -3 is out of range (0,"},
