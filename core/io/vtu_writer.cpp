@@ -1,6 +1,7 @@
 #include "io/vtu_writer.hpp"
 
 #include "io/atomic_file.hpp"
+#include "io/vtu_appended.hpp"
 
 #include "basis/lagrange_nodes.hpp"
 
@@ -18,7 +19,28 @@
 
 namespace hofem {
 
+namespace detail {
+
+std::string xml_escape(std::string_view s) {
+  std::string r;
+  for (const char c : s) {
+    switch (c) {
+      case '&': r += "&amp;"; break;
+      case '<': r += "&lt;"; break;
+      case '>': r += "&gt;"; break;
+      case '"': r += "&quot;"; break;
+      case '\'': r += "&apos;"; break;
+      default: r += c;
+    }
+  }
+  return r;
+}
+
+}  // namespace detail
+
 namespace {
+
+using detail::xml_escape;
 
 // VTK cell type codes (Common/DataModel/vtkCellType.h).
 constexpr int kVtkTetra = 10;
@@ -121,22 +143,6 @@ std::vector<int> hex_permutation(int order) {
   return match_points(vtk, gmsh, order == 1 ? "Hex8" : "Hex20");
 }
 
-// XML attribute text: field names and file names may hold any character.
-std::string xml_escape(std::string_view s) {
-  std::string r;
-  for (const char c : s) {
-    switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      case '\'': r += "&apos;"; break;
-      default: r += c;
-    }
-  }
-  return r;
-}
-
 // Buffered output to a file; every failure becomes a std::runtime_error naming the path.
 // Text output in 1 MB chunks through an AtomicFile: a frame is complete under
 // its name or not there at all.
@@ -208,6 +214,22 @@ void write_field_block(XmlFile& out, std::string_view tag, const std::vector<Vtu
 
 }  // namespace
 
+VtuFormat parse_vtu_format(std::string_view text) {
+  if (text == "ascii") return VtuFormat::ascii;
+  if (text == "binary") return VtuFormat::binary;
+  if (text == "zlib") return VtuFormat::zlib;
+  throw std::invalid_argument(fmt::format("unknown .vtu format '{}' (expected ascii, binary or zlib)", text));
+}
+
+std::string_view to_string(VtuFormat format) {
+  switch (format) {
+    case VtuFormat::ascii: return "ascii";
+    case VtuFormat::binary: return "binary";
+    case VtuFormat::zlib: return "zlib";
+  }
+  return "?";
+}
+
 int vtk_cell_type(CellType cell, int order) {
   // Linear triangles: embedded surfaces (finite cell output); VTK_TRIANGLE = 5,
   // vertices in Gmsh's order (vtkTriangle).
@@ -237,7 +259,7 @@ std::vector<int> gmsh_to_vtk_permutation(CellType cell, int order) {
 }
 
 void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<VtuField>& point_fields,
-               const std::vector<VtuField>& cell_fields) {
+               const std::vector<VtuField>& cell_fields, VtuFormat format) {
   const int type = vtk_cell_type(mesh.cell, mesh.order);
   const int npe = nodes_per_element(mesh.cell, mesh.order);
   if (mesh.nodes_per_element() != npe)
@@ -253,6 +275,10 @@ void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<VtuF
   check_fields(point_fields, num_nodes, "point", "node");
   check_fields(cell_fields, mesh.elements.cols(), "cell", "element");
   const std::vector<int> perm = gmsh_to_vtk_permutation(mesh.cell, mesh.order);
+  if (format != VtuFormat::ascii) {
+    detail::write_vtu_appended(path, mesh, perm, type, point_fields, cell_fields, format == VtuFormat::zlib);
+    return;
+  }
 
   XmlFile out(path);
   out.print("<?xml version=\"1.0\"?>\n");

@@ -1,5 +1,6 @@
 #pragma once
-// ParaView output: VTK XML UnstructuredGrid (.vtu, ASCII) and .pvd time series.
+// ParaView output: VTK XML UnstructuredGrid (.vtu: ASCII, or binary appended data,
+// raw or zlib-compressed; core/io/vtu_appended.hpp) and .pvd time series.
 //
 // hofem stores element nodes in Gmsh order (core/basis/lagrange_nodes.hpp); VTK
 // numbers the same nodes differently. gmsh_to_vtk_permutation() gives, for each
@@ -50,6 +51,7 @@
 
 #include <array>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -63,6 +65,16 @@ struct VtuField {
   Eigen::MatrixXd values;
 };
 
+/// How write_vtu stores the arrays. ascii: inline text, 17 significant digits
+/// (readable, ~2.5x larger, slow); binary: one <AppendedData encoding="raw"> block,
+/// each array its bytes as in memory; zlib: the same, compressed in the
+/// vtkZLibDataCompressor block layout (vtu_appended.hpp has both layouts).
+enum class VtuFormat { ascii, binary, zlib };
+
+/// "ascii" | "binary" | "zlib" -> VtuFormat; std::invalid_argument naming the text otherwise.
+VtuFormat parse_vtu_format(std::string_view text);
+std::string_view to_string(VtuFormat format);
+
 /// VTK cell type code for a hofem cell: Tet order 1/2/>=3 -> 10/24/71, Hex8 -> 12,
 /// Hex20 -> 25. Throws std::invalid_argument for anything else.
 int vtk_cell_type(CellType cell, int order);
@@ -75,17 +87,18 @@ std::vector<std::array<int, 3>> vtk_tetrahedron_lattice(int p);
 /// Throws std::invalid_argument for unsupported cells or orders.
 std::vector<int> gmsh_to_vtk_permutation(CellType cell, int order);
 
-/// Writes `mesh` as an ASCII .vtu file: reference coordinates as Points (write the
+/// Writes `mesh` as a .vtu file in `format`: reference coordinates as Points (write the
 /// displacement as a point field; ParaView's Warp By Vector deforms it), cells in VTK
 /// node order, then the point and cell fields. Doubles are written with 17
-/// significant digits, so they read back exactly.
+/// significant digits in ASCII (and bit for bit in the binary formats), so they read
+/// back exactly.
 /// Throws std::invalid_argument naming the field if a field has the wrong number of
 /// columns, no components, an empty or duplicate name, or a non-finite value (VTK's
 /// ASCII reader cannot parse "nan"/"inf"); std::invalid_argument if the mesh is
 /// inconsistent (element rows, node ids); std::runtime_error naming `path` if the
 /// file cannot be written. Fields are checked before the file is opened.
 void write_vtu(const std::string& path, const Mesh& mesh, const std::vector<VtuField>& point_fields,
-               const std::vector<VtuField>& cell_fields);
+               const std::vector<VtuField>& cell_fields, VtuFormat format = VtuFormat::ascii);
 
 /// Writes a .pvd collection listing (time, .vtu file name relative to the .pvd)
 /// frames in the order given. Throws std::invalid_argument for a non-finite time or

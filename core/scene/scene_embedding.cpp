@@ -126,9 +126,10 @@ Eigen::Matrix3Xd SceneEmbedding::surface_displacement(const Eigen::VectorXd& u) 
   return interpolate_at_points(background_, surface_map_, u);
 }
 
-void SceneEmbedding::write_frame(const std::string& dir, int frame, const Eigen::VectorXd& u, double t) {
-  const std::string name = fmt::format("frame_{:05d}_surface.vtu", frame);
-  write_vtu((std::filesystem::path(dir) / name).string(), surface_, {{"displacement", surface_displacement(u)}}, {});
+void SceneEmbedding::write_frame(const std::string& dir, const std::string& name, const Eigen::VectorXd& u, double t,
+                                 VtuFormat format) {
+  write_vtu((std::filesystem::path(dir) / name).string(), surface_, {{"displacement", surface_displacement(u)}}, {},
+            format);
   frames_.emplace_back(t, name);
 }
 

@@ -14,6 +14,7 @@
 // background mesh must outlive this object.
 #include "embedded/embedded_points.hpp"
 #include "embedded/finite_cell_quadrature.hpp"
+#include "io/vtu_writer.hpp"
 #include "scene/scene.hpp"
 
 #include <nlohmann/json.hpp>
@@ -45,7 +46,9 @@ class SceneEmbedding {
 
   /// Writes frame_NNNNN_surface.vtu (point field "displacement") into `dir` and
   /// records it for write_pvd.
-  void write_frame(const std::string& dir, int frame, const Eigen::VectorXd& u, double t);
+  /// `name` is the file name in `dir` (frame_NNNNN_surface.vtu, final_surface.vtu).
+  void write_frame(const std::string& dir, const std::string& name, const Eigen::VectorXd& u, double t,
+                   VtuFormat format = VtuFormat::ascii);
   /// Writes <name>_surface.pvd listing the frames written.
   void write_pvd(const std::string& dir, const std::string& name) const;
   /// Geometry, cell counts, quadrature points and seconds, stabilisation, extrapolated vertices.

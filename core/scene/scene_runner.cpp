@@ -54,11 +54,13 @@ Eigen::VectorXd energy_density(const Eigen::VectorXd& energies, const Eigen::Vec
 }
 
 // Frame `frame` of the mesh (the background, when embedded: with each cell's
-// volume fraction, and the embedded surface in its own series).
+// volume fraction, and the embedded surface in its own series); frame < 0 is
+// the final frame (final.vtu, final_surface.vtu), listed in no series.
 void write_frame(const std::string& dir, int frame, const Mesh& mesh, const Eigen::VectorXd& u,
                  const Eigen::VectorXd& v, const Eigen::VectorXd& density, SceneEmbedding* embedding,
-                 std::vector<std::pair<double, std::string>>& frames, double t) {
-  const std::string name = fmt::format("frame_{:05d}.vtu", frame);
+                 std::vector<std::pair<double, std::string>>& frames, double t, VtuFormat format) {
+  const std::string stem = frame < 0 ? std::string("final") : fmt::format("frame_{:05d}", frame);
+  const std::string name = stem + ".vtu";
   std::vector<VtuField> point{{"displacement", u.reshaped(3, mesh.num_nodes())}};
   if (v.size() > 0) point.push_back({"velocity", v.reshaped(3, mesh.num_nodes())});
   std::vector<VtuField> cell{{"strain_energy_density", density.transpose()}};
@@ -66,10 +68,10 @@ void write_frame(const std::string& dir, int frame, const Mesh& mesh, const Eige
     const std::vector<double>& f = embedding->volume_fraction();
     cell.push_back(
         {"volume_fraction", Eigen::Map<const Eigen::RowVectorXd>(f.data(), static_cast<Eigen::Index>(f.size()))});
-    embedding->write_frame(dir, frame, u, t);
+    embedding->write_frame(dir, stem + "_surface.vtu", u, t, format);
   }
-  write_vtu((std::filesystem::path(dir) / name).string(), mesh, point, cell);
-  frames.emplace_back(t, name);
+  write_vtu((std::filesystem::path(dir) / name).string(), mesh, point, cell, format);
+  if (frame >= 0) frames.emplace_back(t, name);
 }
 
 // The displacement curve of a step (thesis Fig. 10-11): mean displacement and
@@ -127,7 +129,7 @@ long long stiffness_points(const Mesh& mesh, int standard, const SceneEmbedding*
 // never mixes two runs (a frame 40 of the old run beside frames 0-20 of the new
 // one would pass for a longer run). Other files are left alone.
 void clear_earlier_output(const std::string& out_dir) {
-  static const std::regex kOurs(R"((frame_\d+(_surface)?\.vtu|.*\.pvd|stats\.json)(\.partial-\d+)?)");
+  static const std::regex kOurs(R"(((frame_\d+|final)(_surface)?\.vtu|.*\.pvd|stats\.json)(\.partial-\d+)?)");
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(out_dir, ec))
     if (entry.is_regular_file(ec) && std::regex_match(entry.path().filename().string(), kOurs) &&
@@ -218,7 +220,9 @@ void SceneRun::run_static(std::vector<PrescribedMotion> motions) {
   const Eigen::VectorXd volumes = elemental(piece, problem.assembler().element_volumes());
   const Eigen::VectorXd density = writer ? energy_density(energies, volumes) : Eigen::VectorXd();
   if (options.observer && writer && r.converged) options.observer(SceneState{mesh, emb, 1, 1.0, u});
-  if (options.write_frames && writer) write_frame(out_dir, 0, mesh, u, Eigen::VectorXd(), density, emb, frames, 0.0);
+  if (writer && (options.write_frames || options.final_frame))
+    write_frame(out_dir, options.write_frames ? 0 : -1, mesh, u, Eigen::VectorXd(), density, emb, frames, 0.0,
+                options.vtu_format);
   st["built"] = static_stats_json(r);
   if (piece) st["per_rank"] = to_json(gather_rank_stats(problem.rank_stats(), piece->comm));
 }
@@ -245,12 +249,14 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
   const DistributedMesh* piece = sim.distributed_mesh();
   st["quadrature_points"] = stiffness_points(mesh, static_cast<int>(sim.assembler().rule().size()), emb);
   const Eigen::VectorXd volumes = elemental(piece, sim.assembler().element_volumes());
+  // k < 0: the final frame (SceneRunOptions::final_frame).
   auto frame = [&](int k) {
-    if (!options.write_frames) return;
+    if (k >= 0 ? !options.write_frames : !options.final_frame) return;
     const Eigen::VectorXd energies = elemental(piece, sim.assembler().element_energies(material, sim.positions()));
     const Eigen::VectorXd u = nodal(piece, sim.displacement()), v = nodal(piece, sim.velocities());
     if (!writer) return;
-    write_frame(out_dir, k, mesh, u, v, energy_density(energies, volumes), emb, frames, sim.time());
+    write_frame(out_dir, k, mesh, u, v, energy_density(energies, volumes), emb, frames, sim.time(),
+                options.vtu_format);
   };
   if (is_explicit(s.dynamics.integrator)) st["stable_dt_estimate"] = sim.estimate_stable_dt();
   const int steps = static_cast<int>(std::ceil(s.duration / s.dynamics.dt - 1e-9));
@@ -288,6 +294,7 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
     if (k % s.output_every == 0 || k == steps) frame(k);
     if (progress) progress->update(fmt::format("step {}/{}, t = {:.4g}", k, steps, sim.time()), double(k) / steps);
   }
+  if (!options.write_frames) frame(-1);  // the last state reached, also of a failed run
   if (progress) progress->done(result.ok ? fmt::format("{} steps", done) : "failed at step " + std::to_string(done + 1));
   st["dt"] = s.dynamics.dt;
   st["duration"] = s.duration;
@@ -364,7 +371,7 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   }
   const bool writer = rank == 0;  // distributed: one rank writes
-  if (out_dir.empty() && options.write_frames)
+  if (out_dir.empty() && (options.write_frames || options.final_frame))
     throw SceneError(fmt::format("{}: frames need an output directory", s.file));
   // No output directory: nothing is written (a study's run keeps what it needs in memory).
   const bool files = writer && !out_dir.empty();

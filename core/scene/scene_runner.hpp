@@ -16,6 +16,9 @@
 // before and after simplification and their seconds, extrapolated surface
 // vertices: scene_embedding.hpp), and the per-step mean_displacement and lowest_z
 // are taken over the embedded surface's vertices instead of the mesh nodes.
+// With SceneRunOptions::final_frame and no frames: final.vtu (and
+// final_surface.vtu), the last state only.
+#include "io/vtu_writer.hpp"
 #include "scene/scene.hpp"
 
 #include <nlohmann/json.hpp>
@@ -41,6 +44,12 @@ struct SceneState {
 struct SceneRunOptions {
   bool progress = false;  ///< a progress bar on stderr
   bool write_frames = true;
+  /// With write_frames false: still write the last state as final.vtu (and
+  /// final_surface.vtu when embedded), not listed in a .pvd - a picture of the
+  /// result without every frame's cost (hofem run --final-frame).
+  bool final_frame = false;
+  /// Encoding of the .vtu files (the CLI's --vtu-format; ASCII here, which tests read as text).
+  VtuFormat vtu_format = VtuFormat::ascii;
   /// Over the MPI ranks (static scenes and implicit Euler): every rank
   /// runs the scene on its part of the elements, rank 0 writes the frames and
   /// stats.json (the state is replicated, so they are the whole body's).
