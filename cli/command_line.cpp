@@ -38,6 +38,10 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   mesh->add_option("--cell", meo.cell, "Box mesh cells: tet or hex")->capture_default_str();
   mesh->add_option("--order", meo.order, "Element order (box: any for tet, 1-2 for hex; msh: raise a linear mesh to it)");
   mesh->add_option("--vtu", meo.vtu, "Write the mesh to this .vtu file");
+  const std::string vtu_format_help =
+      "Encoding of the .vtu files: ascii (text), binary (appended raw, ~2x smaller) or zlib (appended, compressed)";
+  const auto vtu_formats = CLI::IsMember({"ascii", "binary", "zlib"});
+  mesh->add_option("--vtu-format", meo.vtu_format, vtu_format_help)->check(vtu_formats)->capture_default_str();
   mesh->add_flag("--json", meo.json, "Print JSON");
   mesh->add_option("--partition", meo.partition, "Partition into K parts (recursive coordinate bisection) and report their quality");
 
@@ -59,6 +63,9 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   mms->add_flag("--distributed", mo.distributed,
                 "Partition the elements over the MPI ranks and solve on hypre (mpirun -np K hofem mms ...; rank 0 prints)");
   mms->add_option("--vtu", mo.vtu, "Write the solution (displacement, exact displacement, L2 error per cell) to this .vtu");
+  mms->add_option("--vtu-format", mo.vtu_format, vtu_format_help)->check(vtu_formats)->capture_default_str();
+  mms->add_option("--export-matrix", mo.export_matrix,
+                  "Write the solved linear system as MatrixMarket: PREFIX.mtx (K), PREFIX_rhs.mtx, PREFIX_solution.mtx");
   mms->add_option("--krylov", mo.krylov, "With --distributed: hypre's pcg or gmres")->capture_default_str();
   mms->add_option("--amg", mo.amg, "With --distributed: BoomerAMG variant (amg, amg-nodal, amg-aggressive)")
       ->capture_default_str();
@@ -81,9 +88,19 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
 
   auto& ro = out.run;
   auto* run = app.add_subcommand("run", "Run a scene file: VTU frames, a .pvd index and stats.json into --out");
-  run->add_option("scene", ro.scene, "Scene file (JSON; scripts/scenes/ has the built-in ones)")->required();
-  run->add_option("--out", ro.out, "Output directory")->required();
+  // SCENE and --out are required by scene_commands.cpp: --print-defaults needs neither, --check no --out.
+  run->add_option("scene", ro.scene, "Scene file (JSON; scripts/scenes/ has the built-in ones; SCENE_FORMAT.md)");
+  run->add_option("--out", ro.out, "Output directory (required unless --check or --print-defaults)");
+  run->add_option("--set", ro.set,
+                  "Override a scene key before validation: key.path=VALUE, VALUE JSON or a bare string "
+                  "(mesh.order=2, boundary.0.release=1.5; repeatable; as a study's overrides)")
+      ->allow_extra_args(false);
+  run->add_flag("--check", ro.check, "Validate the scene (with --set) and build its meshes, print 'SCENE: valid'; no run");
+  run->add_flag("--print-defaults", ro.print_defaults, "Print a scene with every key at its default (JSON) and exit");
   run->add_flag("--no-frames", ro.no_frames, "Write stats.json only");
+  run->add_flag("--final-frame", ro.final_frame,
+                "With --no-frames: still write the last state as final.vtu (final_surface.vtu when embedded)");
+  run->add_option("--vtu-format", ro.vtu_format, vtu_format_help)->check(vtu_formats)->capture_default_str();
   run->add_flag("--distributed", ro.distributed,
                 "Partition the elements over the MPI ranks (static and implicit-Euler scenes; mpirun -np K; rank 0 writes)");
 

@@ -39,7 +39,9 @@ void ensure_parent_directory(const std::string& path) {
   if (const std::filesystem::path p(path); p.has_parent_path()) std::filesystem::create_directories(p.parent_path());
 }
 
-// --limit NAME=VALUE options, applied before any input is read.
+}  // namespace
+
+// --limit NAME=VALUE options, applied before any input is read (commands.hpp).
 void apply_limits(const std::vector<std::string>& limits) {
   for (const std::string& l : limits) {
     try {
@@ -49,6 +51,8 @@ void apply_limits(const std::vector<std::string>& limits) {
     }
   }
 }
+
+namespace {
 
 // A unit-cube mesh of n cells per side over the caps is refused before it is built.
 void check_cube_size(int n, CellType cell, int order, const char* option) {
@@ -187,7 +191,7 @@ int run_mesh(const MeshOptions& o) {
     ensure_parent_directory(o.vtu);
     Eigen::MatrixXd ids(1, m.num_elements());
     for (int e = 0; e < m.num_elements(); ++e) ids(0, e) = e;
-    write_vtu(o.vtu, m, {}, {{"element_id", ids}});
+    write_vtu(o.vtu, m, {}, {{"element_id", ids}}, parse_vtu_format(o.vtu_format));
   }
   if (o.partition < 0 || o.partition > m.num_elements())
     throw UsageError(fmt::format("--partition: needs 1 .. {} parts (the elements), got {}", m.num_elements(), o.partition));
@@ -247,6 +251,10 @@ void check_mms_cases(const MmsOptions& o, CellType cell, const std::vector<int>&
   if (!o.vtu.empty() && orders.size() * sizes.size() > 1)
     throw UsageError("--vtu writes one run's solution: give one --order and one --n");
   if (!o.vtu.empty()) ensure_parent_directory(o.vtu);
+  if (!o.export_matrix.empty() && (orders.size() * sizes.size() > 1 || o.problem != "linear" || o.distributed))
+    throw UsageError("--export-matrix writes one linear system: give --problem linear, one --order, one --n, "
+                     "no --distributed (neohookean is nonlinear: one system per Newton step)");
+  if (!o.export_matrix.empty()) ensure_parent_directory(o.export_matrix + ".mtx");
   if ((o.krylov != "pcg" || o.amg != "amg" || o.rigid_body_modes) && !o.distributed)
     throw UsageError("--krylov, --amg and --rigid-body-modes choose the distributed solver: add --distributed");
 }
@@ -342,6 +350,8 @@ int run_mms(const MmsOptions& o) {
     for (int n : sizes) {
       hofem::MmsCase c{o.problem, cell, order, n, o.perturbed, solver, o.vtu};
       c.distributed = o.distributed;
+      c.export_matrix = o.export_matrix;
+      c.vtu_format = parse_vtu_format(o.vtu_format);
       const hofem::MmsResult r = hofem::run_mms(c);
       all_converged = all_converged && r.converged;
       const ConvergenceRow& row = table.add(c, r);
@@ -366,7 +376,7 @@ int run_scene_file(const RunOptions& o) {
   apply_limits(o.limits);
   Scene scene;
   try {
-    scene = read_scene(o.scene);
+    scene = read_scene(o.scene, o.set);
   } catch (const SceneError& e) {
     throw UsageError(e.what());
   }
@@ -374,6 +384,8 @@ int run_scene_file(const RunOptions& o) {
   SceneRunOptions options;
   options.progress = true;
   options.write_frames = !o.no_frames;
+  options.final_frame = o.final_frame;
+  options.vtu_format = parse_vtu_format(o.vtu_format);
   options.distributed = o.distributed;
   if (o.distributed) {
     ensure_hypre();

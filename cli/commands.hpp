@@ -12,6 +12,10 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Applies --limit NAME=VALUE options (io/input_file.hpp) before any input is read;
+/// a bad one is a UsageError.
+void apply_limits(const std::vector<std::string>& limits);
+
 /// Sentinel for "option not given".
 inline constexpr int kUnset = -1000000;
 
@@ -36,6 +40,7 @@ struct MeshOptions {
   std::string cell = "tet";
   int order = kUnset;
   std::string vtu;
+  std::string vtu_format = "binary";  ///< ascii | binary | zlib (io/vtu_writer.hpp VtuFormat)
   bool json = false;
   int partition = 0;  ///< > 0: also partition the elements into this many parts (RCB) and report the quality
   std::vector<std::string> limits;  ///< --limit NAME=VALUE: raised input caps (io/input_file.hpp)
@@ -52,11 +57,13 @@ struct MmsOptions {
   std::string solver = "auto";
   bool json = false;
   std::string vtu;
+  std::string vtu_format = "binary";  ///< ascii | binary | zlib
   bool distributed = false;  ///< over the MPI ranks (run under mpirun -np K); rank 0 prints
   std::string krylov = "pcg";   ///< distributed solver (DistributedSolverOptions)
   std::string amg = "amg";
   bool rigid_body_modes = false;
   std::vector<std::string> limits;  ///< --limit NAME=VALUE
+  std::string export_matrix;  ///< --export-matrix PREFIX (one linear, serial run)
 };
 int run_mms(const MmsOptions& o);
 
@@ -79,9 +86,14 @@ struct RunOptions {
   std::string scene;
   std::string out;
   bool no_frames = false;
+  bool final_frame = false;           ///< with --no-frames: still write the last state as final.vtu
+  std::string vtu_format = "binary";  ///< ascii | binary | zlib
   bool distributed = false;  ///< over the MPI ranks (mpirun -np K hofem run ... --distributed)
   std::vector<std::string> limits;  ///< --limit NAME=VALUE
   bool reorient = false;            ///< flip straight inverted elements of the scene's .msh files, with a warning
+  std::vector<std::string> set;     ///< --set key.path=VALUE: SceneOverrides (scene.hpp), applied before validation
+  bool check = false;               ///< --check: validate only (scene_commands.hpp)
+  bool print_defaults = false;      ///< --print-defaults: print the default scene and exit
 };
 /// Exit status 0 when every step succeeded, 1 when a step failed (stats.json
 /// still written), 2 for an invalid scene (the message names the file and key).

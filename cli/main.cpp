@@ -16,6 +16,7 @@
 // command_line.cpp (shared with the command-line fuzz target); this file runs them.
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "scene_commands.hpp"
 
 #include <fmt/core.h>
 
@@ -62,7 +63,7 @@ int main(int argc, char** argv) {
     if (sub == "verify") return exec_verify(argc, argv);
     if (sub == "mms") return hofem::cli::run_mms(cl.mms);
     if (sub == "mesh") return hofem::cli::run_mesh(cl.mesh);
-    if (sub == "run") return hofem::cli::run_scene_file(cl.run);
+    if (sub == "run") return hofem::cli::run_scene_command(cl.run);  // --check, --print-defaults, or run_scene_file
     if (sub == "study") return hofem::cli::run_study_file(cl.study);
   } catch (const hofem::cli::UsageError& e) {
     fmt::print(stderr, "hofem: error: {}\n", e.what());

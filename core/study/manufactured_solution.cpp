@@ -8,6 +8,7 @@
 #include "parallel/mpi_runtime.hpp"
 #include "mesh/mesh_upgrade.hpp"
 #include "io/vtu_writer.hpp"
+#include "study/mms_export.hpp"
 #include "problem/static_elasticity.hpp"
 #include "quadrature/rule_library.hpp"
 
@@ -201,6 +202,7 @@ MmsResult run_mms(const MmsCase& c) {
                         : std::make_unique<StaticElasticity>(mesh, *p.material, p.dirichlet, p.body_force, p.options);
   StaticElasticity& problem = *owned;
   const StaticReport rep = problem.solve();
+  if (!c.export_matrix.empty()) export_mms_system(c, p, problem, c.export_matrix);
 
   MmsResult r;
   r.cells = mesh.num_elements();
@@ -245,7 +247,8 @@ MmsResult run_mms(const MmsCase& c) {
       Eigen::MatrixXd disp = Eigen::Map<const Eigen::MatrixXd>(u.data(), 3, mesh.num_nodes());
       Eigen::MatrixXd exact(3, mesh.num_nodes());
       for (int i = 0; i < mesh.num_nodes(); ++i) exact.col(i) = p.ustar.value(mesh.nodes.col(i));
-      write_vtu(c.vtu, mesh, {{"displacement", disp}, {"exact_displacement", exact}}, {{"l2_error", err.cell_l2}});
+      write_vtu(c.vtu, mesh, {{"displacement", disp}, {"exact_displacement", exact}}, {{"l2_error", err.cell_l2}},
+                c.vtu_format);
     }
   }
   r.l2_error = err.l2;

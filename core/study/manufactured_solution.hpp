@@ -10,6 +10,7 @@
 // with s = 1 (linear elasticity) or 0.1 (Neo-Hookean), E = 1, nu = 0.3.
 // Body force f = -Div P(F*), F* = I + grad u*, evaluated exactly:
 //   f_i = - sum_{j,k,l} dP_ij/dF_kl (F*) d^2 u*_k / dX_l dX_j.
+#include "io/vtu_writer.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
 #include "problem/static_elasticity.hpp"
@@ -54,6 +55,11 @@ struct MmsCase {
   double algebraic_rtol = 0.0;
   /// Distributed over the MPI ranks (StaticOptions::distributed).
   bool distributed = false;
+  /// If set: write the solved system as MatrixMarket files PREFIX*.mtx
+  /// (study/mms_export.hpp; linear, serial cases only). Last, so that
+  /// positional initialisers of the fields above stay valid.
+  std::string export_matrix{};
+  VtuFormat vtu_format = VtuFormat::ascii;  ///< encoding of `vtu` (hofem mms --vtu-format)
 };
 
 struct MmsResult {
