@@ -188,6 +188,12 @@ std::optional<std::string> fastest_of_component(const std::string& series, int l
 /// >= 2") by element kind (cell_tag + order), recorded by the linear sweep and
 /// looked up by the Newton sweep, which would otherwise only see Newton fail.
 void record_setup_failure(const std::string& combo, const std::string& kind, const std::string& why);
+
+/// A configuration that does not exist for this element order: p-multigrid
+/// coarsens to order 1 (Hex8 / Tet4), so on an order-1 mesh there is nothing to
+/// coarsen and its set-up refuses it every time (not a failure of the method).
+/// Used by the linear and the Newton sweep alike.
+std::optional<std::string> order_skip_reason(const std::string& combo, int order);
 std::optional<std::string> setup_failure(const std::string& combo, const std::string& kind);
 
 // ---- runs -------------------------------------------------------------------

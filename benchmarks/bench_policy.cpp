@@ -240,4 +240,10 @@ void skip(benchmark::State& state, const std::string& why) {
 }
 void fail(benchmark::State& state, const std::string& why) { state.SkipWithError(("failed: " + why).c_str()); }
 
+std::optional<std::string> order_skip_reason(const std::string& combo, int order) {
+  if (order < 2 && combo_solver(combo).preconditioner == "pmg")
+    return std::string("pmg needs element order >= 2 (it coarsens to order 1; this mesh is order 1)");
+  return std::nullopt;
+}
+
 }  // namespace hofem::bench

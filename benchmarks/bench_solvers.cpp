@@ -126,11 +126,7 @@ std::optional<std::string> linear_skip_reason(const LinearCase& c) {
   } catch (const std::exception& e) {
     return std::string("not available: ") + e.what();
   }
-  // p-multigrid coarsens to order 1 (Hex8 / Tet4); on an order-1 mesh there is
-  // nothing to coarsen, so the configuration does not exist (its set-up would
-  // refuse it every time: not a failure of the method).
-  if (c.key.order < 2 && SolverSpec::parse(c.solver.substr(0, c.solver.find('/'))).preconditioner == "pmg")
-    return "pmg needs element order >= 2 (it coarsens to order 1; this mesh is order 1)";
+  if (auto why = order_skip_reason(c.solver, c.key.order)) return why;
   const LinearSystem& sys = linear_system(c.key);
   if (!sys.positive_definite && needs_spd(c.solver))
     return c.solver + " needs a positive-definite matrix; this one is " + sys.definiteness_note;

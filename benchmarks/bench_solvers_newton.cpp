@@ -85,13 +85,14 @@ NewtonSample solve_once(const hofem::MmsProblem& p, const NewtonCase& c) {
 }
 
 // Why a configuration is not run, decided at its first repetition: the sweep's
-// policy, a set-up failure of its preconditioner or direct solver on this
+// policy, a solver that does not exist for the order (order_skip_reason), a set-up failure of its preconditioner or direct solver on this
 // element kind in the linear sweep, (quick preset) a Krylov method that was not
 // the fastest for its preconditioner on the projected Hessians, or a solver
 // this build cannot make.
 std::optional<std::string> newton_skip_reason(const NewtonCase& c) {
   const double unknowns = static_cast<double>(free_unknowns("mms-neohookean", CellType::Tetrahedron, c.mms.order, c.mms.n));
   if (auto why = sweep_skip_reason(c.series(), c.level, c.combo(), unknowns, is_direct(c.solver), 3)) return why;
+  if (auto why = order_skip_reason(c.solver, c.mms.order)) return why;
   if (auto why = setup_failure(c.solver, "tet/p" + std::to_string(c.mms.order))) return why;
   if (!preset().newton_every_method && !is_direct(c.solver) && preset().keep_at(c.level) == 0 && !c.eisenstat_walker) {
     const std::string hessians = "hessian-nh-psd|tet|p" + std::to_string(c.mms.order);
