@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <limits>
 #include <set>
+#include <string_view>
 
 namespace hofem {
 
@@ -293,13 +294,44 @@ Scene parse_validated(const json& j, const std::string& origin) {
   return s;
 }
 
+// The override (if any) that set the key an error names: a reader who typed
+// `--set mesh.order=abc` (or a study's run list) must see that the bad value is
+// theirs, not the file's. The error names its key path after "FILE: " or inside
+// "key '...'"; the longest override path that is that key or a parent of it wins.
+std::string override_named_by(const std::string& message, const std::string& origin,
+                              const SceneOverrides& overrides) {
+  const std::string* best = nullptr;
+  std::size_t best_len = 0;
+  for (const std::string& item : overrides) {
+    const std::size_t eq = item.find('=');
+    if (eq == std::string::npos || eq == 0 || eq <= best_len) continue;
+    const std::string path = item.substr(0, eq);
+    for (const std::string& lead : {origin + ": " + path, "key '" + path}) {
+      const std::size_t at = message.find(lead);
+      if (at == std::string::npos) continue;
+      const std::size_t end = at + lead.size();
+      if (end == message.size() || std::string_view(" .'[").find(message[end]) != std::string_view::npos) {
+        best = &item;
+        best_len = eq;
+      }
+    }
+  }
+  return best ? *best : std::string();
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& text, const std::string& origin, const SceneOverrides& overrides) {
   check_nesting(text, origin);
   json j = parse_json(text, origin);
   for (const std::string& o : overrides) apply_override(j, o, origin);
-  return parse_validated(j, origin);
+  try {
+    return parse_validated(j, origin);
+  } catch (const SceneError& e) {
+    const std::string item = override_named_by(e.what(), origin, overrides);
+    if (item.empty()) throw;
+    throw SceneError(fmt::format("{} (the value comes from the override '{}')", e.what(), item));
+  }
 }
 
 Scene read_scene(const std::string& path, const SceneOverrides& overrides) {

@@ -188,6 +188,17 @@ TEST(SceneOverrides, ValuesAreAppliedThenValidatedLikeTheFile) {
   EXPECT_NE(m.find("key 'material.youngs' is unknown"), std::string::npos) << m;
   m = message_of<SceneError>([&] { read_scene(tiny, {"mesh.order=eight"}); });
   EXPECT_NE(m.find("mesh.order must be an integer (got \"eight\")"), std::string::npos) << m;
+  // The error says which override set the bad value (the longest path that is the
+  // key or a parent of it), and blames none for an error in a key none touched.
+  EXPECT_NE(m.find("(the value comes from the override 'mesh.order=eight')"), std::string::npos) << m;
+  m = message_of<SceneError>([&] { read_scene(tiny, {"mesh.order=2", "material.youngs=1"}); });
+  EXPECT_NE(m.find("(the value comes from the override 'material.youngs=1')"), std::string::npos) << m;
+  m = message_of<SceneError>([&] { read_scene(tiny, {"mesh={\"box\": {}}", "mesh.cell=hex"}); });
+  EXPECT_NE(m.find("(the value comes from the override 'mesh={\"box\": {}}')"), std::string::npos) << m;
+  m = message_of<SceneError>([&] { read_scene(tiny, {"dt=-1", "duration=0.2"}); });
+  EXPECT_NE(m.find("(the value comes from the override 'dt=-1')"), std::string::npos) << m;
+  m = message_of<SceneError>([&] { read_scene(tiny, {"material.young=3e5", "integrator=static"}); });
+  EXPECT_EQ(m.find("the value comes from"), std::string::npos) << m;  // dt of the file "does not apply"
   // Malformed overrides are named.
   m = message_of<SceneError>([&] { read_scene(tiny, {"mesh.order"}); });
   EXPECT_NE(m.find("override 'mesh.order' is not key.path=VALUE"), std::string::npos) << m;
