@@ -11,6 +11,14 @@ mid-edge nodes of curved elements are left out, so curved faces look flat) and
 moved by the displacement of those vertices. An embedded (finite cell) scene's
 picture is its embedded surface (final_surface.vtu, triangles), not the box of
 background cells. The files are read with meshio (Debian's python3-meshio).
+
+matplotlib draws polygons back to front by their mean depth (the painter's
+algorithm), which puts far faces over near ones where large faces overlap (the
+twisted cylinder's neck). So the view is orthographic, and when the surface is
+consistently oriented (every directed edge met once, its reverse once) the faces
+turned away from the viewer are dropped, as a renderer's back-face culling does;
+the faces are then shaded by their angle to a light at the viewer (60-100 % of
+the colour) so the shape reads.
 """
 import sys
 import time
@@ -50,6 +58,41 @@ def boundary_faces(faces, surface):
     return faces[counts[inverse.ravel()] == 1]
 
 
+ELEV, AZIM = 30.0, -60.0  # matplotlib's default view
+
+
+def consistently_oriented(faces):
+    """Each directed edge once and its reverse once: a closed, consistently oriented surface."""
+    edges = np.stack([faces, np.roll(faces, -1, axis=1)], axis=-1).reshape(-1, 2)
+    directed = np.unique(edges, axis=0)
+    if len(directed) != len(edges):
+        return False
+    reverse = np.unique(edges[:, ::-1], axis=0)
+    return np.array_equal(directed, reverse)
+
+
+def face_normals(x, faces):
+    """Area-weighted normals (from the first three vertices; quads' diagonals for k = 4)."""
+    if faces.shape[1] == 4:
+        return np.cross(x[faces[:, 2]] - x[faces[:, 0]], x[faces[:, 3]] - x[faces[:, 1]])
+    return np.cross(x[faces[:, 1]] - x[faces[:, 0]], x[faces[:, 2]] - x[faces[:, 0]])
+
+
+def visible(x, faces, eye):
+    """The faces turned towards the eye and the shade of each (|cos| to the eye)."""
+    n = face_normals(x, faces)
+    length = np.maximum(np.linalg.norm(n, axis=1), 1e-300)
+    facing = n @ eye / length
+    if consistently_oriented(faces):
+        # Outward if the enclosed volume (divergence theorem, sum of x . n / 3) is positive.
+        centre = x[faces].mean(axis=1)
+        if np.einsum("ij,ij->", centre, n) < 0.0:
+            facing = -facing
+        keep = facing > 0.0
+        return faces[keep], facing[keep]
+    return faces, np.abs(facing)
+
+
 def render(vtu, png, title):
     mesh = meshio.read(vtu)
     u = mesh.point_data.get("displacement")
@@ -63,9 +106,15 @@ def render(vtu, png, title):
     norm = matplotlib.colors.Normalize(vmin=0.0, vmax=max(mag.max(), 1e-300))
     fig = plt.figure(figsize=(4.8, 3.6))
     ax = fig.add_subplot(projection="3d")
+    ax.view_init(elev=ELEV, azim=AZIM)
+    ax.set_proj_type("ortho")
+    e, a = np.radians(ELEV), np.radians(AZIM)
+    eye = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
     for faces in polys:
-        coll = Poly3DCollection(x[faces], facecolors=plt.cm.viridis(norm(mag[faces].mean(axis=1))),
-                                edgecolors="k", linewidths=0.1)
+        faces, shade = visible(x, faces, eye)
+        colours = plt.cm.viridis(norm(mag[faces].mean(axis=1)))
+        colours[:, :3] *= (0.6 + 0.4 * shade)[:, None]
+        coll = Poly3DCollection(x[faces], facecolors=colours, edgecolors="k", linewidths=0.1)
         ax.add_collection3d(coll)
     lo, hi = x.min(axis=0), x.max(axis=0)
     for set_lim, a, b in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), lo, hi):

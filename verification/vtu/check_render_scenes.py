@@ -9,6 +9,12 @@ and checks that only final.vtu and stats.json were written (no frame_*.vtu, no
 ~100 dpi figure and is not blank: the axes part (left of the colorbar) must hold
 coloured faces - pixels whose channels differ (greys, text and white do not) -
 in several colours (the |displacement| gradient along the beam).
+
+First, on a unit cube of one Hex8 (hand-made faces, so the expected answers are
+known without the code under test): its six boundary faces are consistently
+oriented, the three facing the default eye (elev 30, azim -60: the faces x = 1,
+y = 0, z = 1) are kept and the three facing away dropped; one face flipped makes
+the surface inconsistent, and then nothing is dropped.
 """
 import subprocess
 import sys
@@ -23,8 +29,34 @@ def fail(msg):
     sys.exit(1)
 
 
+def check_culling(source):
+    sys.path.insert(0, str(source / "scripts"))
+    import render_scenes as rs  # noqa: E402 (scripts/ is not a package)
+
+    # VTK's Hex8 vertex order on the unit cube.
+    x = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], float)
+    faces = rs.boundary_faces(rs.cell_faces("hexahedron", np.arange(8)[None, :]), False)
+    if len(faces) != 6 or not rs.consistently_oriented(faces):
+        fail(f"a cube's {len(faces)} boundary faces are not found consistently oriented")
+    e, a = np.radians(rs.ELEV), np.radians(rs.AZIM)
+    eye = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])  # (0.43, -0.75, 0.5)
+    kept, shade = rs.visible(x, faces, eye)
+    # The faces towards that eye are x = 1, y = 0 and z = 1: their outward normals
+    # (+x, -y, +z) have eye components 0.43, 0.75, 0.5 > 0; the other three < 0.
+    centres = sorted(tuple(np.round(x[f].mean(axis=0), 6)) for f in kept)
+    if centres != sorted([(1.0, 0.5, 0.5), (0.5, 0.0, 0.5), (0.5, 0.5, 1.0)]):
+        fail(f"a cube seen from {eye.round(2)} keeps the faces centred at {centres}")
+    if not np.allclose(sorted(shade), sorted(np.abs(eye))):  # cos to the eye = the eye's components
+        fail(f"shades {shade} are not the eye's components {eye}")
+    flipped = faces.copy()
+    flipped[0] = flipped[0][::-1]
+    if rs.consistently_oriented(flipped) or len(rs.visible(x, flipped, eye)[0]) != 6:
+        fail("one face flipped: the surface must be found inconsistent and every face kept")
+
+
 def main():
     hofem, source, work = sys.argv[1], Path(sys.argv[2]), Path(sys.argv[3])
+    check_culling(source)
     out = work / "reports" / "scenes" / "cantilever"
     subprocess.run([hofem, "run", str(source / "scripts/scenes/cantilever-linear.json"), "--out", str(out),
                     "--no-frames", "--final-frame", "--set", "duration=0.4"], check=True,
