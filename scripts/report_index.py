@@ -47,7 +47,7 @@ details { margin: 2px 0; } summary { cursor: pointer; } details.group { margin-l
 .grid { display: grid; grid-template-columns: repeat(auto-fill, minmax(380px, 1fr)); gap: 12px; align-items: start; }
 table.groups { width: 100%; margin: 0; } table.claims { table-layout: fixed; width: 100%; overflow-wrap: anywhere; }
 table.claims th:nth-child(1) { width: 13%; } table.claims th:nth-child(2) { width: 8%; }
-table.claims th:nth-child(3), table.claims th:nth-child(7) { width: 15%; } table.claims th:nth-child(8) { width: 4%; }
+table.claims th:nth-child(3), table.claims th:nth-child(7) { width: 15%; } table.claims th:nth-child(8) { width: 5.5%; }
 table.claims th:nth-child(4), table.claims th:nth-child(5), table.claims th:nth-child(6) { width: 6%; }
 figure { margin: 0; border: 1px solid #ddd; padding: 4px; } figure img, .study img { max-width: 100%; }
 figcaption { font-size: 12px; color: #555; word-break: break-all; } nav a { margin-right: 1em; }
