@@ -86,6 +86,13 @@ void TimeStepper::implicit_euler_adaptive(StepReport& report, double h, int dept
 }
 
 std::string TimeStepper::instability_hint() {
+  // Explicit Euler has no stable dt for an undamped mode (stability_limit 0):
+  // naming a bound "dt < 0" would be true and useless, so the hint says what helps.
+  if (stability_limit(options_.integrator) == 0.0)
+    return fmt::format(": unstable; {} at dt = {:.3e} amplifies every undamped mode at any dt (its stability "
+                       "region holds no imaginary eigenvalue): a stable dt needs damping (\"damping\": "
+                       "{{\"alpha\", \"beta\"}}) or another integrator",
+                       integrator_name(options_.integrator), options_.dt);
   double stable = std::numeric_limits<double>::quiet_NaN();
   try {
     stable = estimate_stable_dt(body_, x_);
@@ -96,11 +103,8 @@ std::string TimeStepper::instability_hint() {
   const std::string bound = std::isnan(stable) ? std::string("a smaller dt (the last state is too close to "
                                                              "inversion to estimate omega_max)")
                                                : fmt::format("dt < {:.3e} here", stable);
-  return fmt::format(": unstable; {} at dt = {:.3e} needs {} (omega_max from power iteration on M^-1 K{})",
-                     integrator_name(options_.integrator), options_.dt, bound,
-                     options_.integrator == Integrator::ExplicitEuler
-                         ? "; explicit Euler is unstable at any dt without damping"
-                         : "");
+  return fmt::format(": unstable; {} at dt = {:.3e} needs {} (omega_max from power iteration on M^-1 K)",
+                     integrator_name(options_.integrator), options_.dt, bound);
 }
 
 StepReport TimeStepper::step() {

@@ -204,9 +204,20 @@ TEST(Dynamics, ExplicitSchemesDetectInstability) {
     std::printf("%s: stable dt %.3e; at 3x it stopped after %d steps: %s\n",
                 std::string(integrator_name(integrator)).c_str(), stable, k, r.message.c_str());
   }
-  // Explicit Euler has no stable dt without damping: reported as such.
+  // Explicit Euler has no stable dt without damping: reported as such, and the
+  // stopped run says what helps instead of naming a bound "dt < 0".
   auto euler = body.simulation(Integrator::ExplicitEuler, 1e-3);
   EXPECT_EQ(euler->estimate_stable_dt(), 0.0);
+  StepReport r;
+  int k = 0;
+  for (; k < 20000 && (r = euler->step()).ok; ++k) {
+  }
+  ASSERT_FALSE(r.ok) << "explicit Euler ran 20000 undamped steps";
+  EXPECT_NE(r.message.find("amplifies every undamped mode at any dt"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("damping"), std::string::npos) << r.message;
+  EXPECT_EQ(r.message.find("dt <"), std::string::npos) << r.message;
+  EXPECT_TRUE(euler->positions().allFinite() && euler->velocities().allFinite());
+  std::printf("explicit-euler at dt 1e-3 stopped after %d steps: %s\n", k, r.message.c_str());
 }
 
 // ---- stress tests of numerical stability ---------------------------------------
