@@ -4,8 +4,9 @@
 // bytes = the file's size, bytes_per_s = bytes written per second. What it
 // answers: the size and write-time ratios of ascii : binary : zlib, i.e. what
 // `hofem run --vtu-format` costs per frame. Files go to the temporary directory
-// and are removed; the page cache absorbs them, so this is encoding + copy cost,
-// not disk bandwidth.
+// and are removed. The real time (reported) includes the fsync that makes each
+// frame durable before its rename (io/atomic_file), so it depends on the disk;
+// the CPU time is the encoding and the copy into the page cache.
 #include "io/vtu_writer.hpp"
 #include "mesh/box_mesh.hpp"
 

@@ -105,7 +105,9 @@ def render(vtu, png, title):
     mag = np.linalg.norm(u, axis=1)
     norm = matplotlib.colors.Normalize(vmin=0.0, vmax=max(mag.max(), 1e-300))
     fig = plt.figure(figsize=(4.8, 3.6))
-    ax = fig.add_subplot(projection="3d")
+    # The colour bar has an axes of its own, below the picture: placed beside it by
+    # fig.colorbar(ax=...), a flat body's z axis (the slingshot) was drawn over it.
+    ax = fig.add_axes([0.0, 0.2, 1.0, 0.72], projection="3d")
     ax.view_init(elev=ELEV, azim=AZIM)
     ax.set_proj_type("ortho")
     e, a = np.radians(ELEV), np.radians(AZIM)
@@ -125,7 +127,8 @@ def render(vtu, png, title):
     ax.set_zlabel("z (m)", fontsize=7)
     ax.tick_params(labelsize=6)
     ax.locator_params(nbins=4)
-    bar = fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap="viridis"), ax=ax, shrink=0.7, pad=0.15)
+    bar = fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap="viridis"), cax=fig.add_axes([0.3, 0.13, 0.4, 0.025]),
+                       orientation="horizontal")
     bar.set_label("|displacement| (m)", fontsize=7)
     bar.ax.tick_params(labelsize=6)
     ax.set_title(title, fontsize=9)
