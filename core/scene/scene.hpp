@@ -107,6 +107,14 @@ struct SceneEmbedded {
   bool simplify = true;
 };
 
+/// Overrides of a scene's keys, "key.path=VALUE" ("mesh.order=2",
+/// "boundary.0.release=1.5", "mesh.cell=hex"): VALUE is JSON, or a string when it
+/// is not valid JSON. They are applied to the JSON before validation, so an
+/// overridden value is checked exactly like one in the file; a path through a
+/// value that is not an object (or an array, for a numeric segment) is refused.
+/// The one override mechanism of studies and the command line.
+using SceneOverrides = std::vector<std::string>;
+
 struct Scene {
   std::string file;  ///< where it was read from (for messages)
   std::string name;
@@ -129,19 +137,18 @@ struct Scene {
   /// Not a scene key: the command line's --reorient. The mesh builders then flip
   /// straight inverted elements of a .msh (with a warning) before validating.
   bool reorient = false;
+  /// The overrides applied to the file's keys, so that an error found later (a
+  /// boundary entry selecting no node of the built mesh) names the one it came from.
+  SceneOverrides overrides;
 };
-
-/// Overrides of a scene's keys, "key.path=VALUE" ("mesh.order=2",
-/// "boundary.0.release=1.5", "mesh.cell=hex"): VALUE is JSON, or a string when it
-/// is not valid JSON. They are applied to the JSON before validation, so an
-/// overridden value is checked exactly like one in the file; a path through a
-/// value that is not an object (or an array, for a numeric segment) is refused.
-/// The one override mechanism of studies and the command line.
-using SceneOverrides = std::vector<std::string>;
 
 /// Parses and validates a scene file; throws SceneError naming the file and key.
 Scene read_scene(const std::string& path, const SceneOverrides& overrides = {});
 /// The same for JSON text; `origin` names it in messages.
 Scene parse_scene(const std::string& text, const std::string& origin, const SceneOverrides& overrides = {});
+/// `message` (an error about the scene read from `origin`) with "(the value comes
+/// from the override 'K=V')" appended when one of `overrides` set the key it names;
+/// unchanged when none did.
+std::string name_override(const std::string& message, const std::string& origin, const SceneOverrides& overrides);
 
 }  // namespace hofem

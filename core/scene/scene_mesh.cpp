@@ -22,6 +22,12 @@ namespace hofem {
 
 namespace {
 
+// Every error here names the scene and a key; when a --set override (or a study's
+// run) set that key, the message says so, as the parser's do.
+[[noreturn]] void fail(const Scene& s, const std::string& message) {
+  throw SceneError(name_override(message, s.file, s.overrides));
+}
+
 // The scene's mesh `key` after --reorient's flips (announced on stderr, never
 // silent) and validation; errors name the scene, the key and the element.
 Mesh validated(Mesh mesh, const Scene& s, const char* key) {
@@ -34,7 +40,7 @@ Mesh validated(Mesh mesh, const Scene& s, const char* key) {
   try {
     validate_mesh(mesh);
   } catch (const MeshError& e) {
-    throw SceneError(fmt::format("{}: {}: {}", s.file, key, e.what()));
+    fail(s, fmt::format("{}: {}: {}", s.file, key, e.what()));
   }
   return mesh;
 }
@@ -56,7 +62,7 @@ Mesh generated_or_read(const SceneShape& g, CellType cell, int order, const Scen
   try {
     return read_gmsh(g.file);
   } catch (const std::exception& e) {
-    throw SceneError(fmt::format("{}: {}.file: {}", s.file, key, e.what()));
+    fail(s, fmt::format("{}: {}.file: {}", s.file, key, e.what()));
   }
 }
 
@@ -66,7 +72,7 @@ Mesh build_scene_mesh(const Scene& s) {
   Mesh mesh = generated_or_read(s.mesh, s.cell, s.order, s, "mesh");
   if (mesh.order != s.order) {  // a .msh file's own order
     if (mesh.order != 1 || mesh.cell != CellType::Tetrahedron)
-      throw SceneError(fmt::format("{}: mesh.order = {}: the mesh '{}' has order {}; only P1 tetrahedra are upgraded",
+      fail(s, fmt::format("{}: mesh.order = {}: the mesh '{}' has order {}; only P1 tetrahedra are upgraded",
                                    s.file, s.order, s.mesh.file, mesh.order));
     mesh = upgrade_order(mesh, s.order);
   }
@@ -78,8 +84,8 @@ Mesh build_embedded_mesh(const Scene& s) {
   // Generators: Tet4 (box_mesh of order 1 is box_tet_mesh).
   Mesh mesh = generated_or_read(s.embedded->shape, CellType::Tetrahedron, 1, s, "embedded");
   if (mesh.cell != CellType::Tetrahedron)
-    throw SceneError(
-        fmt::format("{}: embedded.file: '{}' is not a tetrahedral mesh (the embedded geometry must be tetrahedra)",
+    fail(s,
+         fmt::format("{}: embedded.file: '{}' is not a tetrahedral mesh (the embedded geometry must be tetrahedra)",
                     s.file, s.embedded->shape.file));
   return validated(std::move(mesh), s, "embedded");
 }
@@ -90,14 +96,14 @@ std::vector<int> boundary_nodes(const Scene& s, const Mesh& mesh, size_t index) 
   if (!b.set.empty()) {
     const auto it = mesh.node_sets.find(b.set);
     if (it == mesh.node_sets.end()) {
-      throw SceneError(fmt::format("{}: boundary[{}].nodes = '{}' is not a node set of the mesh (valid: {})", s.file,
+      fail(s, fmt::format("{}: boundary[{}].nodes = '{}' is not a node set of the mesh (valid: {})", s.file,
                                    index, b.set, fmt::join(std::views::keys(mesh.node_sets), ", ")));
     }
     nodes = it->second;
   } else {
     nodes = nodes_in_box(mesh, b.box->first, b.box->second);
   }
-  if (nodes.empty()) throw SceneError(fmt::format("{}: boundary[{}].nodes selects no node of the mesh", s.file, index));
+  if (nodes.empty()) fail(s, fmt::format("{}: boundary[{}].nodes selects no node of the mesh", s.file, index));
   return nodes;
 }
 

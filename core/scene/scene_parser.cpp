@@ -294,10 +294,37 @@ Scene parse_validated(const json& j, const std::string& origin) {
   return s;
 }
 
+// An override's key path as the parser's messages write it: "boundary.0.nodes" is
+// "boundary[0].nodes" there (json_input's Field paths).
+std::string message_path(const std::string& path) {
+  std::string out;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t dot = path.find('.', start);
+    const std::string key = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    const bool index = !key.empty() && key.find_first_not_of("0123456789") == std::string::npos;
+    out += index ? "[" + key + "]" : (out.empty() ? key : "." + key);
+    if (dot == std::string::npos) return out;
+    start = dot + 1;
+  }
+}
+
+// Whether `message` holds `lead` (a key path after "FILE: " or "key '") followed
+// by its end, a space, a dot, a quote or an index: the key or a key inside it.
+bool names_key(const std::string& message, const std::string& lead) {
+  for (std::size_t at = message.find(lead); at != std::string::npos; at = message.find(lead, at + 1)) {
+    const std::size_t end = at + lead.size();
+    if (end == message.size() || std::string_view(" .'[").find(message[end]) != std::string_view::npos) return true;
+  }
+  return false;
+}
+
 // The override (if any) that set the key an error names: a reader who typed
 // `--set mesh.order=abc` (or a study's run list) must see that the bad value is
 // theirs, not the file's. The error names its key path after "FILE: " or inside
 // "key '...'"; the longest override path that is that key or a parent of it wins.
+// An unknown key is also the override's when the override's path passes through
+// it ("mesh.boxx.min=..." made the unknown key 'mesh.boxx').
 std::string override_named_by(const std::string& message, const std::string& origin,
                               const SceneOverrides& overrides) {
   const std::string* best = nullptr;
@@ -305,15 +332,14 @@ std::string override_named_by(const std::string& message, const std::string& ori
   for (const std::string& item : overrides) {
     const std::size_t eq = item.find('=');
     if (eq == std::string::npos || eq == 0 || eq <= best_len) continue;
-    const std::string path = item.substr(0, eq);
-    for (const std::string& lead : {origin + ": " + path, "key '" + path}) {
-      const std::size_t at = message.find(lead);
-      if (at == std::string::npos) continue;
-      const std::size_t end = at + lead.size();
-      if (end == message.size() || std::string_view(" .'[").find(message[end]) != std::string_view::npos) {
-        best = &item;
-        best_len = eq;
-      }
+    const std::string path = message_path(item.substr(0, eq));
+    bool named = names_key(message, origin + ": " + path) || names_key(message, "key '" + path);
+    for (std::size_t cut = path.size(); !named && cut != std::string::npos && cut > 0;
+         cut = path.find_last_of(".[", cut - 1))
+      named = message.find("key '" + path.substr(0, cut) + "' is unknown") != std::string::npos;
+    if (named) {
+      best = &item;
+      best_len = eq;
     }
   }
   return best ? *best : std::string();
@@ -326,12 +352,18 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
   json j = parse_json(text, origin);
   for (const std::string& o : overrides) apply_override(j, o, origin);
   try {
-    return parse_validated(j, origin);
+    Scene s = parse_validated(j, origin);
+    s.overrides = overrides;
+    return s;
   } catch (const SceneError& e) {
-    const std::string item = override_named_by(e.what(), origin, overrides);
-    if (item.empty()) throw;
-    throw SceneError(fmt::format("{} (the value comes from the override '{}')", e.what(), item));
+    throw SceneError(name_override(e.what(), origin, overrides));
   }
+}
+
+std::string name_override(const std::string& message, const std::string& origin, const SceneOverrides& overrides) {
+  const std::string item = override_named_by(message, origin, overrides);
+  if (item.empty()) return message;
+  return fmt::format("{} (the value comes from the override '{}')", message, item);
 }
 
 Scene read_scene(const std::string& path, const SceneOverrides& overrides) {

@@ -199,6 +199,21 @@ TEST(SceneOverrides, ValuesAreAppliedThenValidatedLikeTheFile) {
   EXPECT_NE(m.find("(the value comes from the override 'dt=-1')"), std::string::npos) << m;
   m = message_of<SceneError>([&] { read_scene(tiny, {"material.young=3e5", "integrator=static"}); });
   EXPECT_EQ(m.find("the value comes from"), std::string::npos) << m;  // dt of the file "does not apply"
+  // An override that makes an unknown key deeper than the key is still named, and an
+  // array index set as ".1" is the message's "[1]".
+  m = message_of<SceneError>([&] { read_scene(tiny, {"mesh.order=2", "mesh.boxx.min=1"}); });
+  EXPECT_NE(m.find("key 'mesh.boxx' is unknown"), std::string::npos) << m;
+  EXPECT_NE(m.find("(the value comes from the override 'mesh.boxx.min=1')"), std::string::npos) << m;
+  m = message_of<SceneError>([&] { read_scene(tiny, {"mesh.box.cells.1=0"}); });
+  EXPECT_NE(m.find("mesh.box.cells[1]"), std::string::npos) << m;
+  EXPECT_NE(m.find("(the value comes from the override 'mesh.box.cells.1=0')"), std::string::npos) << m;
+  // Errors found once the mesh is built name the override too: a boundary entry's
+  // node set is checked against the mesh, not by the parser.
+  const Scene bad_set =
+      read_scene(tiny, {R"(boundary=[{"nodes": "zmin", "motion": "fixed"}])", "boundary.0.nodes=nowhere"});
+  m = message_of<SceneError>([&] { boundary_nodes(bad_set, build_scene_mesh(bad_set), 0); });
+  EXPECT_NE(m.find("boundary[0].nodes = 'nowhere' is not a node set of the mesh"), std::string::npos) << m;
+  EXPECT_NE(m.find("(the value comes from the override 'boundary.0.nodes=nowhere')"), std::string::npos) << m;
   // Malformed overrides are named.
   m = message_of<SceneError>([&] { read_scene(tiny, {"mesh.order"}); });
   EXPECT_NE(m.find("override 'mesh.order' is not key.path=VALUE"), std::string::npos) << m;
