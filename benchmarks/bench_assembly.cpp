@@ -8,6 +8,7 @@
 #include "element/element_kernel.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
+#include "solver/blas_threads.hpp"
 
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -20,6 +21,11 @@
 #include <string>
 #include <thread>
 #include <utility>
+
+// BLAS's Fortran matrix product, from the OpenBLAS hofem links.
+extern "C" void dgemm_(const char* transa, const char* transb, const int* m, const int* n, const int* k,
+                       const double* alpha, const double* a, const int* lda, const double* b, const int* ldb,
+                       const double* beta, double* c, const int* ldc);
 
 namespace {
 
@@ -164,6 +170,32 @@ void BM_AssembleHessianThreads(benchmark::State& state, int kind, int threads) {
   state.SetLabel(std::string(kKinds[kind].label) + " neohookean threads=" + std::to_string(threads));
 }
 
+// A direct solver's BLAS call followed by a Hessian assembly on every OpenMP
+// thread, as in each Newton iteration of a small implicit problem: a 256 x 256
+// matrix product (a supernode's update; OpenBLAS threads it when it may), then
+// the Hex20 Neo-Hookean assembly. blas_threads:1 is what the direct solvers set
+// below kThreadedBlasMinFlops (solver/blas_threads.hpp); blas_threads:pool lets
+// OpenBLAS's workers take the product, after which they spin on sched_yield for
+// ~0.1 s beside the assembly's threads.
+void BM_AssembleAfterBlas(benchmark::State& state, bool pool) {
+  Setup& s = setup(kHex20);
+  const auto mat = make_material("neohookean", LameParameters::from_young_poisson(1.0, 0.3));
+  Eigen::VectorXd g;
+  SparseMatrix K = s.assembler->new_matrix();
+  const int n = 256;
+  const Eigen::MatrixXd a = Eigen::MatrixXd::Random(n, n), b = Eigen::MatrixXd::Random(n, n);
+  Eigen::MatrixXd c(n, n);
+  const double one = 1.0, zero = 0.0;
+  const int threads = use_blas_threads_for(pool ? kThreadedBlasMinFlops : 0.0);
+  for (auto _ : state) {
+    dgemm_("N", "N", &n, &n, &n, &one, a.data(), &n, b.data(), &n, &zero, c.data(), &n);
+    benchmark::DoNotOptimize(s.assembler->hessian(*mat, s.x, g, K, false));
+  }
+  use_blas_threads_for(0.0);
+  state.counters["blas_threads"] = threads;
+  state.SetLabel("Hex20 neohookean after a threaded dgemm: blas threads " + std::to_string(threads));
+}
+
 // Pattern, element-to-nonzero map and colouring: once per mesh.
 void BM_SparsityPattern(benchmark::State& state, int kind) {
   Setup& s = setup(kind);
@@ -214,6 +246,8 @@ const bool registered = [] {
       register_named("BM_AssembleHessianThreads/" + element_name(k) + "/threads:" + std::to_string(threads),
                      BM_AssembleHessianThreads, k, threads);
   for (int k = 0; k < kinds; ++k) register_named("BM_SparsityPattern/" + element_name(k), BM_SparsityPattern, k);
+  register_named("BM_AssembleAfterBlas/hex20/blas_threads:1", BM_AssembleAfterBlas, false);
+  register_named("BM_AssembleAfterBlas/hex20/blas_threads:pool", BM_AssembleAfterBlas, true);
   return true;
 }();
 

@@ -1,5 +1,7 @@
 #include "solver/cholmod_solver.hpp"
 
+#include "solver/blas_threads.hpp"
+
 #include <fmt/format.h>
 
 #include <stdexcept>
@@ -45,12 +47,15 @@ void CholmodSolver::analyze(const SparseMatrix& A) {
   factor_ = cholmod_l_analyze(&s, &common_);
   if (!factor_) throw std::runtime_error(fmt::format("CHOLMOD analyze failed (status {})", common_.status));
   pattern_ = pattern_fingerprint(A);
+  factor_flops_ = common_.fl;    // the analysis' count for one numeric factorisation
+  solve_flops_ = 4.0 * common_.lnz;  // forward and back substitution: 2 flops per entry each
   ++analyses_;
 }
 
 bool CholmodSolver::factorize(const SparseMatrix& A) {
   if (!factor_ || pattern_fingerprint(A) != pattern_) analyze(A);
   cholmod_sparse s = view(A);
+  use_blas_threads_for(factor_flops_);
   cholmod_l_factorize(&s, factor_, &common_);
   ++factorizations_;
   if (common_.status == CHOLMOD_NOT_POSDEF) return false;
@@ -90,6 +95,7 @@ void CholmodSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   // solve, or again when the size changes): no allocation per solve, which
   // matters where the solve runs inside every preconditioner application (the
   // coarse level of pmg).
+  use_blas_threads_for(solve_flops_);
   if (!cholmod_l_solve2(CHOLMOD_A, serial_solves_ ? solve_factor_ : factor_, &B, nullptr, &X_, nullptr, &Y_, &E_, &common_))
     throw std::runtime_error(fmt::format("CHOLMOD solve failed (status {})", common_.status));
   x = Eigen::Map<const Eigen::VectorXd>(static_cast<const double*>(X_->x), b.size());

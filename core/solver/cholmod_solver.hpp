@@ -38,6 +38,7 @@ class CholmodSolver final : public LinearSolver {
   bool serial_solves_ = false;
   cholmod_dense *X_ = nullptr, *Y_ = nullptr, *E_ = nullptr;  // solve2 result and workspaces, reused
   std::uint64_t pattern_ = 0;  // pattern_fingerprint of the analysed matrix
+  double factor_flops_ = 0.0, solve_flops_ = 0.0;  // of the analysed pattern: how many BLAS threads pay
 };
 
 }  // namespace hofem

@@ -26,6 +26,7 @@ class UmfpackSolver final : public LinearSolver {
   void* numeric_ = nullptr;
   const SparseMatrix* A_ = nullptr;
   std::uint64_t pattern_ = 0;  // pattern_fingerprint of the analysed matrix
+  double factor_flops_ = 0.0, solve_flops_ = 0.0;  // estimates of the analysis: how many BLAS threads pay
 };
 
 }  // namespace hofem

@@ -6,13 +6,19 @@
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "problem/static_elasticity.hpp"
+#include "solver/blas_threads.hpp"
 #include "solver/krylov.hpp"
 #include "solver/linear_solver.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
+#include <algorithm>
 #include <iostream>
+
+extern "C" int openblas_get_num_threads(void);  // OpenBLAS's public API (cblas.h)
 
 namespace hofem {
 namespace {
@@ -221,6 +227,31 @@ TEST(DirectSolvers, CholmodRefusesSmallIndefiniteMatrices) {
   EXPECT_FALSE(chol->factorize(A));
   A.coeffRef(3, 3) = 2.0;  // now diagonally dominant: SPD
   EXPECT_TRUE(chol->factorize(A));
+}
+
+// The direct solvers give OpenBLAS's threads only to factorisations big enough
+// to pay for them (solver/blas_threads.hpp): the bar's (~1e7 flops) runs on one
+// thread, so no BLAS worker is left spinning beside the OpenMP loops that
+// follow; a call of kThreadedBlasMinFlops gets the pool.
+TEST(DirectSolvers, BlasThreadsOnlyForLargeFactorisations) {
+  const int pool = use_blas_threads_for(kThreadedBlasMinFlops);
+  EXPECT_EQ(openblas_get_num_threads(), pool);
+  EXPECT_GE(pool, 1);
+  EXPECT_LE(pool, omp_get_max_threads());
+  const SparseMatrix K = stiffness();
+  const Eigen::VectorXd b = rhs(K.rows());
+  for (const char* name : {"cholmod", "umfpack"}) {
+    use_blas_threads_for(kThreadedBlasMinFlops);
+    auto s = make_linear_solver(name);
+    ASSERT_TRUE(s->factorize(K)) << name;
+    EXPECT_EQ(openblas_get_num_threads(), 1) << name;
+    use_blas_threads_for(kThreadedBlasMinFlops);
+    Eigen::VectorXd x;
+    s->solve(b, x);
+    EXPECT_EQ(openblas_get_num_threads(), 1) << name;
+    EXPECT_LE((b - K * x).norm() / b.norm(), 1e-10) << name;  // backward stable, cond ~1e4
+  }
+  EXPECT_EQ(use_blas_threads_for(0.5 * kThreadedBlasMinFlops), 1);
 }
 
 // A matrix of the same size with a new pattern (two far-apart DOFs coupled, as a
