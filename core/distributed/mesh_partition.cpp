@@ -38,10 +38,19 @@ void bisect(const Eigen::Matrix3Xd& centroid, std::vector<int>& order, int first
   bisect(centroid, order, mid, last, first_part + left_parts, parts - left_parts, part);
 }
 
-// Vertex-index faces of a reference cell (Gmsh order), enough to identify shared faces.
-std::vector<std::vector<int>> cell_faces(CellType cell) {
-  if (cell == CellType::Tetrahedron) return {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
-  return {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+// Vertex-index faces of a reference cell (Gmsh order), enough to identify
+// shared faces: a tetrahedron's four triangles (slot 3 unused) or a
+// hexahedron's six quadrilaterals. Fixed size, so the key below never reads
+// past its four slots.
+struct CellFaces {
+  std::array<std::array<int, 4>, 6> vertices;
+  int count;
+  int size;  // vertices per face
+};
+
+CellFaces cell_faces(CellType cell) {
+  if (cell == CellType::Tetrahedron) return {{{{1, 2, 3, -1}, {0, 2, 3, -1}, {0, 1, 3, -1}, {0, 1, 2, -1}}}, 4, 3};
+  return {{{{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}, 6, 4};
 }
 
 }  // namespace
@@ -101,11 +110,12 @@ PartitionQuality partition_quality(const Mesh& mesh, const std::vector<int>& par
       }
   // Faces shared by two elements of different parts.
   std::map<std::array<int, 4>, int> first_part;
+  const CellFaces faces = cell_faces(mesh.cell);
   for (int e = 0; e < mesh.num_elements(); ++e)
-    for (const auto& f : cell_faces(mesh.cell)) {
+    for (int i = 0; i < faces.count; ++i) {
       std::array<int, 4> key{-1, -1, -1, -1};
-      for (size_t k = 0; k < f.size(); ++k) key[k] = mesh.elements(f[k], e);
-      std::sort(key.begin(), key.begin() + static_cast<long>(f.size()));
+      for (int k = 0; k < faces.size; ++k) key[k] = mesh.elements(faces.vertices[i][k], e);
+      std::sort(key.begin(), key.end());  // a triangle's unused slot stays -1 and sorts first
       auto [it, fresh] = first_part.try_emplace(key, part[e]);
       if (!fresh && it->second != part[e]) ++q.cut_faces;
     }

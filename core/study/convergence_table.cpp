@@ -125,7 +125,10 @@ std::string ConvergenceTable::to_csv() const {
   out += '\n';
   for (const ConvergenceRow& row : rows_) {
     const json j = row_json(row);
-    for (std::size_t i = 0; i < std::size(kColumns); ++i) out += (i ? "," : "") + csv_field(j[kColumns[i].name]);
+    for (std::size_t i = 0; i < std::size(kColumns); ++i) {
+      if (i) out += ',';
+      out += csv_field(j[kColumns[i].name]);
+    }
     out += '\n';
   }
   return out;

@@ -18,7 +18,7 @@ struct SuiteOptions {
   std::string convergence = "ci";
   /// Run only the families that can write a group starting with this prefix
   /// (empty: all). The report still holds every row the run families wrote.
-  std::string group;
+  std::string group{};
   /// Progress lines on stderr (provenance/progress.hpp) while the families run.
   bool progress = false;
   /// If set, receives one row per run of the convergence study (the tidy

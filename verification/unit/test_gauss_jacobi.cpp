@@ -37,7 +37,9 @@ TEST(GaussLegendre, SymmetricAndAscending) {
   for (int i = 0; i < 17; ++i) {
     EXPECT_EQ(r.points(0, i), -r.points(0, 16 - i));
     EXPECT_EQ(r.weights[i], r.weights[16 - i]);
-    if (i > 0) EXPECT_LT(r.points(0, i - 1), r.points(0, i));
+    if (i > 0) {
+      EXPECT_LT(r.points(0, i - 1), r.points(0, i));
+    }
   }
   EXPECT_EQ(r.points(0, 8), 0.0);
 }

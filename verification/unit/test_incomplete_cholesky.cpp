@@ -92,8 +92,9 @@ TEST(IncompleteCholesky0, ShiftsOnBreakdown) {
   const Eigen::MatrixXd LLt = L * L.transpose();
   for (Eigen::Index i = 0; i < 4; ++i)
     for (Eigen::Index j = 0; j < 4; ++j)
-      if (D(i, j) != 0.0)
+      if (D(i, j) != 0.0) {
         EXPECT_NEAR(LLt(i, j), D(i, j) * (i == j ? 1.0 + ic.shift() : 1.0), 1e-13) << i << ", " << j;
+      }
 }
 
 }  // namespace

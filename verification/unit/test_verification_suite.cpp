@@ -35,7 +35,9 @@ TEST(VerificationFamilies, GroupsDoNotOverlap) {
   for (const CheckFamily& f : check_families()) all.insert(all.end(), f.groups.begin(), f.groups.end());
   for (std::size_t i = 0; i < all.size(); ++i)
     for (std::size_t j = 0; j < all.size(); ++j)
-      if (i != j) EXPECT_FALSE(all[j].starts_with(all[i])) << all[i] << " is a prefix of " << all[j];
+      if (i != j) {
+        EXPECT_FALSE(all[j].starts_with(all[i])) << all[i] << " is a prefix of " << all[j];
+      }
 }
 
 // JUnit: a failing check becomes a <failure> with measured, threshold and why;
