@@ -1,4 +1,4 @@
-#include "distributed/mesh_partition.hpp"
+#include "distributed/mesh_partition.hpp"  // mesh/mesh.hpp brings the cell faces (quadrature/cell_type.hpp)
 
 #include <fmt/format.h>
 
@@ -6,6 +6,7 @@
 #include <array>
 #include <map>
 #include <numeric>
+#include <span>
 #include <stdexcept>
 
 namespace hofem {
@@ -36,21 +37,6 @@ void bisect(const Eigen::Matrix3Xd& centroid, std::vector<int>& order, int first
   });
   bisect(centroid, order, first, mid, first_part, left_parts, part);
   bisect(centroid, order, mid, last, first_part + left_parts, parts - left_parts, part);
-}
-
-// Vertex-index faces of a reference cell (Gmsh order), enough to identify
-// shared faces: a tetrahedron's four triangles (slot 3 unused) or a
-// hexahedron's six quadrilaterals. Fixed size, so the key below never reads
-// past its four slots.
-struct CellFaces {
-  std::array<std::array<int, 4>, 6> vertices;
-  int count;
-  int size;  // vertices per face
-};
-
-CellFaces cell_faces(CellType cell) {
-  if (cell == CellType::Tetrahedron) return {{{{1, 2, 3, -1}, {0, 2, 3, -1}, {0, 1, 3, -1}, {0, 1, 2, -1}}}, 4, 3};
-  return {{{{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}}}, 6, 4};
 }
 
 }  // namespace
@@ -110,15 +96,19 @@ PartitionQuality partition_quality(const Mesh& mesh, const std::vector<int>& par
       }
   // Faces shared by two elements of different parts.
   std::map<std::array<int, 4>, int> first_part;
-  const CellFaces faces = cell_faces(mesh.cell);
-  for (int e = 0; e < mesh.num_elements(); ++e)
-    for (int i = 0; i < faces.count; ++i) {
-      std::array<int, 4> key{-1, -1, -1, -1};
-      for (int k = 0; k < faces.size; ++k) key[k] = mesh.elements(faces.vertices[i][k], e);
-      std::sort(key.begin(), key.end());  // a triangle's unused slot stays -1 and sorts first
-      auto [it, fresh] = first_part.try_emplace(key, part[e]);
-      if (!fresh && it->second != part[e]) ++q.cut_faces;
-    }
+  auto count_cut = [&](int e, std::span<const int> face) {
+    std::array<int, 4> key{-1, -1, -1, -1};  // a triangle's unused slot stays -1 and sorts first
+    for (std::size_t k = 0; k < face.size(); ++k) key[k] = mesh.elements(face[k], e);
+    std::sort(key.begin(), key.end());
+    auto [it, fresh] = first_part.try_emplace(key, part[e]);
+    if (!fresh && it->second != part[e]) ++q.cut_faces;
+  };
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    if (mesh.cell == CellType::Tetrahedron)
+      for (const auto& f : kTetrahedronFaces) count_cut(e, f);
+    else
+      for (const auto& f : kHexahedronFaces) count_cut(e, f);
+  }
   const double mean = static_cast<double>(mesh.num_elements()) / parts;
   q.imbalance = *std::max_element(q.elements.begin(), q.elements.end()) / mean - 1.0;
   for (int p = 0; p < parts; ++p)

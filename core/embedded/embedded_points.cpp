@@ -3,6 +3,7 @@
 #include "basis/reference_basis.hpp"
 #include "embedded/embedded_quadrature.hpp"
 #include "embedded/finite_cell_quadrature.hpp"
+#include "quadrature/cell_type.hpp"
 
 #include <Eigen/LU>
 #include <fmt/format.h>
@@ -236,15 +237,13 @@ PointValues evaluate_at_points(const Mesh& mesh, const EmbeddedPointMap& map, co
 
 Mesh boundary_surface(const Mesh& tets, std::vector<int>* vertex_of) {
   if (tets.cell != CellType::Tetrahedron) throw std::invalid_argument("boundary_surface: needs a tetrahedral mesh");
-  // Gmsh tet faces opposite each vertex, ordered so that the normal points away from it.
-  constexpr std::array<std::array<int, 3>, 4> kFaces{{{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
   std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> faces;  // sorted key -> (count, oriented)
   for (int e = 0; e < tets.num_elements(); ++e) {
     // Orientation from the actual vertex order (either handedness of input).
     Eigen::Matrix3d J;
     for (int k = 0; k < 3; ++k) J.col(k) = tets.nodes.col(tets.elements(k + 1, e)) - tets.nodes.col(tets.elements(0, e));
     const bool flip = J.determinant() < 0.0;
-    for (const auto& f : kFaces) {
+    for (const auto& f : kTetrahedronFaces) {
       std::array<int, 3> v{tets.elements(f[0], e), tets.elements(f[1], e), tets.elements(f[2], e)};
       if (flip) std::swap(v[1], v[2]);
       std::array<int, 3> key = v;

@@ -1,6 +1,7 @@
 #include "mesh/mesh_upgrade.hpp"
 
 #include "basis/lagrange_nodes.hpp"
+#include "quadrature/cell_type.hpp"
 
 #include <fmt/format.h>
 
@@ -46,14 +47,13 @@ std::vector<int> key_vertices(const Key& k) {
 // Boundary faces of the linear mesh (faces used by exactly one element), as
 // sorted vertex lists: triangles for tets, quads for hexes.
 std::set<std::vector<int>> boundary_faces(const Mesh& m) {
-  static const int tet_faces[4][4] = {{0, 2, 1, -1}, {0, 1, 3, -1}, {0, 3, 2, -1}, {3, 1, 2, -1}};
-  static const int hex_faces[6][4] = {{0, 3, 2, 1}, {0, 1, 5, 4}, {0, 4, 7, 3}, {1, 2, 6, 5}, {2, 3, 7, 6}, {4, 5, 6, 7}};
   std::map<std::vector<int>, int> count;
   const bool tet = m.cell == CellType::Tetrahedron;
   for (int e = 0; e < m.num_elements(); ++e)
     for (int f = 0; f < (tet ? 4 : 6); ++f) {
       std::vector<int> face;
-      for (int i = 0; i < (tet ? 3 : 4); ++i) face.push_back(m.elements(tet ? tet_faces[f][i] : hex_faces[f][i], e));
+      for (int i = 0; i < (tet ? 3 : 4); ++i)
+        face.push_back(m.elements(tet ? kTetrahedronFaces[f][i] : kHexahedronFaces[f][i], e));
       std::sort(face.begin(), face.end());
       ++count[face];
     }

@@ -10,6 +10,7 @@
 // and the thesis' isoparametric space (thesis eq. 4.27, 4.33).
 #include <Eigen/Core>
 
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -35,5 +36,14 @@ double reference_volume(CellType cell);
 double interior_margin(CellType cell, const Eigen::Ref<const Eigen::VectorXd>& x);
 /// Vertices of the reference cell, one per column (Gmsh vertex order).
 Eigen::MatrixXd reference_vertices(CellType cell);
+
+/// Corner faces of the tetrahedron (face i opposite vertex i) and of the
+/// hexahedron, as Gmsh vertex indices, each ordered so that the right-hand
+/// rule gives the outward normal of a positively oriented cell. The one home of
+/// these tables: boundary extraction, surface sampling and partition quality
+/// all key faces by them (ctest CellType.CornerFacesAreOutwardBoundaryFaces).
+inline constexpr std::array<std::array<int, 3>, 4> kTetrahedronFaces{{{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
+inline constexpr std::array<std::array<int, 4>, 6> kHexahedronFaces{
+    {{0, 3, 2, 1}, {0, 1, 5, 4}, {0, 4, 7, 3}, {1, 2, 6, 5}, {2, 3, 7, 6}, {4, 5, 6, 7}}};
 
 }  // namespace hofem

@@ -1,6 +1,7 @@
 #include "study/surface_sampling.hpp"
 
 #include "basis/reference_basis.hpp"
+#include "quadrature/cell_type.hpp"
 
 #include <algorithm>
 #include <map>
@@ -9,11 +10,6 @@
 namespace hofem {
 
 namespace {
-
-// Gmsh vertex indices of the faces of a tetrahedron and a hexahedron.
-constexpr std::array<std::array<int, 3>, 4> kTetFaces{{{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}}};
-constexpr std::array<std::array<int, 4>, 6> kHexFaces{
-    {{0, 3, 2, 1}, {0, 1, 5, 4}, {0, 4, 7, 3}, {1, 2, 6, 5}, {2, 3, 7, 6}, {4, 5, 6, 7}}};
 
 // Lattice of a triangle a, b, c split into s x s pieces: points a + (i/s)(b - a)
 // + (j/s)(c - a), i + j <= s, appended to `points`; triangles appended too.
@@ -70,8 +66,8 @@ SurfaceLattice boundary_lattice(const Mesh& mesh, int s) {
   for (int e = 0; e < mesh.num_elements(); ++e)
     for (int f = 0; f < nf; ++f) {
       std::vector<int> key;
-      if (tet) for (int v : kTetFaces[f]) key.push_back(mesh.elements(v, e));
-      else for (int v : kHexFaces[f]) key.push_back(mesh.elements(v, e));
+      if (tet) for (int v : kTetrahedronFaces[f]) key.push_back(mesh.elements(v, e));
+      else for (int v : kHexahedronFaces[f]) key.push_back(mesh.elements(v, e));
       std::sort(key.begin(), key.end());
       auto [it, fresh] = faces.try_emplace(std::move(key), 0, std::make_pair(e, f));
       ++it->second.first;
@@ -83,11 +79,11 @@ SurfaceLattice boundary_lattice(const Mesh& mesh, int s) {
     if (value.first != 1) continue;
     const auto [e, f] = value.second;
     if (tet)
-      triangle_lattice(ref.col(kTetFaces[f][0]), ref.col(kTetFaces[f][1]), ref.col(kTetFaces[f][2]), s, xi,
+      triangle_lattice(ref.col(kTetrahedronFaces[f][0]), ref.col(kTetrahedronFaces[f][1]), ref.col(kTetrahedronFaces[f][2]), s, xi,
                        out.triangles);
     else
-      quad_lattice({ref.col(kHexFaces[f][0]), ref.col(kHexFaces[f][1]), ref.col(kHexFaces[f][2]),
-                    ref.col(kHexFaces[f][3])},
+      quad_lattice({ref.col(kHexahedronFaces[f][0]), ref.col(kHexahedronFaces[f][1]), ref.col(kHexahedronFaces[f][2]),
+                    ref.col(kHexahedronFaces[f][3])},
                    s, xi, out.triangles);
     element.resize(xi.size(), e);
   }
