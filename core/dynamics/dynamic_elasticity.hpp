@@ -31,8 +31,12 @@ class DynamicElasticity {
   /// Initial positions, 3 per node (prescribed nodes are reset to their motion).
   void set_positions(const Eigen::VectorXd& x) { stepper_.set_positions(x); }
 
+  /// Continues from a stored state (TimeStepper::restart).
+  void restart(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) { stepper_.restart(t, x, v); }
   /// Advances by dt. On failure (ok = false) the state is left at the last good step.
   StepReport step() { return stepper_.step(); }
+  /// The implicit integrators' linear solver (null before their first step).
+  const LinearSolver* linear_solver() const { return stepper_.linear_solver(); }
 
   double time() const { return stepper_.time(); }
   const Eigen::VectorXd& positions() const { return stepper_.positions(); }

@@ -62,7 +62,8 @@ struct DynamicsStats {
   int energy_evaluations = 0;
   int hessian_assemblies = 0;
   int symbolic_analyses = 0;     ///< of the linear solver
-  int factorizations = 0;        ///< of the linear solver (numeric)
+  int factorizations = 0;        ///< of the linear solver (numeric; an iterative solver's preconditioner set-ups)
+  int setup_reuses = 0;          ///< matrices an iterative solver took on an earlier set-up (KrylovOptions::setup_reuse)
   int newton_iterations = 0;
   int linear_iterations = 0;
   int floor_evaluations = 0;     ///< 0 without a floor
@@ -74,6 +75,7 @@ struct DynamicsStats {
   /// quadrature point and evaluation for corotated, none for the others.
   long long polar_decompositions = 0;
   double assembly_seconds = 0.0, solve_seconds = 0.0;
+  double setup_seconds = 0.0;  ///< of solve_seconds: factorisations / preconditioner set-ups (LinearSolver::setup_seconds)
 };
 
 class ElasticBody {

@@ -186,13 +186,19 @@ void TimeStepper::step_implicit_euler(StepReport& report, double h) {
   // domain (an inverted element): then from the last state, which is inside.
   Eigen::VectorXd z = z_tilde;
   if (!std::isfinite(problem.energy(z))) z.setZero();
-  const int analyses0 = solver_->analyses(), factorizations0 = solver_->factorizations();
+  const int analyses0 = solver_->analyses(), factorizations0 = solver_->factorizations(),
+            reuses0 = solver_->setup_reuses();
+  const double setup0 = solver_->setup_seconds();
   const auto t0 = std::chrono::steady_clock::now();
   const double assembly0 = stats.assembly_seconds;
   const NewtonResult r = newton_minimize(problem, z, *solver_, options_.newton);
   stats.solve_seconds += since(t0) - (stats.assembly_seconds - assembly0);
   stats.symbolic_analyses += solver_->analyses() - analyses0;
   stats.factorizations += solver_->factorizations() - factorizations0;
+  stats.setup_reuses += solver_->setup_reuses() - reuses0;
+  stats.setup_seconds += solver_->setup_seconds() - setup0;
+  report.setups = solver_->factorizations() - factorizations0;
+  report.setup_reuses = solver_->setup_reuses() - reuses0;
   stats.newton_iterations += r.iterations;
   stats.linear_iterations += r.linear_iterations;
   report.newton_iterations = r.iterations;
@@ -255,13 +261,19 @@ void TimeStepper::step_semi_implicit(StepReport& report) {
     for (Eigen::Index i = 0; i < Mfree_diag.size(); ++i) K_.coeffRef(i, i) += (1.0 + h * alpha) * Mfree_diag[i];
   }
   t0 = std::chrono::steady_clock::now();
-  const int analyses0 = solver_->analyses(), factorizations0 = solver_->factorizations();
+  const int analyses0 = solver_->analyses(), factorizations0 = solver_->factorizations(),
+            reuses0 = solver_->setup_reuses();
+  const double setup0 = solver_->setup_seconds();
   const bool ok = solver_->factorize(K_);
   Eigen::VectorXd dv;
   if (ok) solver_->solve(rhs, dv);
   stats.solve_seconds += since(t0);
   stats.symbolic_analyses += solver_->analyses() - analyses0;
   stats.factorizations += solver_->factorizations() - factorizations0;
+  stats.setup_reuses += solver_->setup_reuses() - reuses0;
+  stats.setup_seconds += solver_->setup_seconds() - setup0;
+  report.setups = solver_->factorizations() - factorizations0;
+  report.setup_reuses = solver_->setup_reuses() - reuses0;
   stats.linear_iterations += solver_->last_iterations();
   report.linear_iterations = solver_->last_iterations();
   if (!ok) {

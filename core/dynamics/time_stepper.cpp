@@ -30,6 +30,18 @@ void TimeStepper::set_state(const Eigen::VectorXd& value, Eigen::VectorXd& into,
   energy_reference_ = -1.0;
 }
 
+void TimeStepper::restart(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
+  if (!std::isfinite(t)) throw std::invalid_argument("dynamics: restart time must be finite");
+  if (x.size() != x_.size() || v.size() != v_.size() || !x.allFinite() || !v.allFinite())
+    throw std::invalid_argument(fmt::format("dynamics: a restart needs {} finite positions and velocities", x_.size()));
+  t_ = t;
+  x_ = x;
+  v_ = v;
+  body_.impose_motion(t_, x_, &v_);
+  a_valid_ = false;
+  energy_reference_ = -1.0;
+}
+
 void TimeStepper::ensure_linear_solver() {
   if (solver_) return;
   Discretization& disc = body_.disc();
@@ -70,6 +82,8 @@ void TimeStepper::implicit_euler_adaptive(StepReport& report, double h, int dept
   step_implicit_euler(attempt, h);
   report.newton_iterations += attempt.newton_iterations;
   report.linear_iterations += attempt.linear_iterations;
+  report.setups += attempt.setups;
+  report.setup_reuses += attempt.setup_reuses;
   report.newton_residual = attempt.newton_residual;
   if (attempt.ok) return;
   if (depth >= kMaxHalvings) {

@@ -21,6 +21,8 @@ struct StepReport {
   std::string message;  ///< why not ok (instability, inversion, Newton failure)
   int newton_iterations = 0;
   int linear_iterations = 0;
+  int setups = 0;        ///< the linear solver's factorisations / preconditioner set-ups
+  int setup_reuses = 0;  ///< matrices an iterative solver took on an earlier set-up
   double newton_residual = 0.0;
   double seconds = 0.0;
 };
@@ -36,6 +38,10 @@ class TimeStepper {
   /// Positions and velocities, 3 per node (prescribed nodes are reset to their motion).
   void set_positions(const Eigen::VectorXd& x) { set_state(x, x_, "positions"); }
   void set_velocities(const Eigen::VectorXd& v) { set_state(v, v_, "velocities"); }
+  /// Continues from a stored state: time t, positions and velocities (3 per
+  /// node; prescribed nodes are reset to their motion at t). The linear solver
+  /// and its set-ups are kept.
+  void restart(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v);
   /// Advances by the body's dt. On failure (ok = false) the state is left at the last good step.
   StepReport step();
 

@@ -243,8 +243,8 @@ Scene parse_validated(const json& j, const std::string& origin) {
     d.lumping = root.at("lumping").choice({"row-sum", "hrz"}) == "hrz" ? MassLumping::HRZ : MassLumping::RowSum;
   if (root.has("solver")) {
     const Field sv = root.at("solver");
-    sv.keys({"linear", "krylov_iterations", "distributed", "newton_rtol", "newton_max_iterations",
-             "eisenstat_walker"});
+    sv.keys({"linear", "krylov_iterations", "setup_reuse", "distributed", "newton_rtol",
+             "newton_max_iterations", "eisenstat_walker"});
     if (sv.has("linear")) {
       std::vector<std::string> names = linear_solver_names();
       names.insert(names.begin(), "auto");
@@ -259,6 +259,15 @@ Scene parse_validated(const json& j, const std::string& origin) {
             .fail(fmt::format("needs solver.linear = a Krylov method (cg+, cr+, minres+, gmres+ with a "
                               "preconditioner), not \"{}\"",
                               d.solver.name()));
+    }
+    if (sv.has("setup_reuse")) {  // "never", "amortised" or a growth factor >= 1 (solver_spec.hpp)
+      const Field f = sv.at("setup_reuse");
+      if (f.raw().is_number()) {
+        d.solver.krylov.setup_reuse = SetupReuse::Growth;
+        d.solver.krylov.setup_reuse_growth = f.number(1.0, 1e6);
+      } else {
+        d.solver.krylov.setup_reuse = f.choice({"never", "amortised"}) == "never" ? SetupReuse::Never : SetupReuse::Amortised;
+      }
     }
     if (sv.has("distributed")) parse_distributed_solver(sv.at("distributed"), d.solver.distributed);
     if (sv.has("newton_rtol")) d.newton.rtol = sv.at("newton_rtol").number(0.0, 1.0, true, true);

@@ -25,9 +25,9 @@ namespace hofem {
 // What a dynamic run built and evaluated, each counter under its own name.
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DynamicsStats, linear_solver, linear_solver_reason, mass, mass_matrices_built,
                                    mass_factorizations, gradient_evaluations, energy_evaluations, hessian_assemblies,
-                                   symbolic_analyses, factorizations, newton_iterations, linear_iterations,
+                                   symbolic_analyses, factorizations, setup_reuses, newton_iterations, linear_iterations,
                                    floor_evaluations, step_halvings, releases, contact_node_steps, max_penetration,
-                                   polar_decompositions, assembly_seconds, solve_seconds)
+                                   polar_decompositions, assembly_seconds, solve_seconds, setup_seconds)
 
 namespace {
 
@@ -230,7 +230,8 @@ void SceneRun::run_static(std::vector<PrescribedMotion> motions) {
 // One step's row of stats.json, before its energies and curves.
 json step_row(int k, const StepReport& r) {
   return {{"step", k}, {"t", r.time}, {"ok", r.ok}, {"newton_iterations", r.newton_iterations},
-          {"linear_iterations", r.linear_iterations}, {"newton_residual", r.newton_residual},
+          {"linear_iterations", r.linear_iterations}, {"setups", r.setups}, {"setup_reuses", r.setup_reuses},
+          {"newton_residual", r.newton_residual},
           {"seconds", r.seconds}};
 }
 
@@ -248,6 +249,7 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
   if (v0.squaredNorm() > 0.0) sim.set_velocity([v0](const Eigen::Vector3d&) { return v0; });
   const DistributedMesh* piece = sim.distributed_mesh();
   st["quadrature_points"] = stiffness_points(mesh, static_cast<int>(sim.assembler().rule().size()), emb);
+  if (!piece) st["free_dofs"] = sim.dofs().num_free();  // the unknowns of the linear systems (serial)
   const Eigen::VectorXd volumes = elemental(piece, sim.assembler().element_volumes());
   // k < 0: the final frame (SceneRunOptions::final_frame).
   auto frame = [&](int k) {
@@ -259,7 +261,15 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
                 options.vtu_format);
   };
   if (is_explicit(s.dynamics.integrator)) st["stable_dt_estimate"] = sim.estimate_stable_dt();
-  const int steps = static_cast<int>(std::ceil(s.duration / s.dynamics.dt - 1e-9));
+  int first = 0;  // the step the run starts after
+  if (options.start) {
+    if (options.start->x.size() != sim.positions().size())
+      throw SceneError(fmt::format("{}: the stored state has {} values, this scene's mesh {}", s.file,
+                                   options.start->x.size(), sim.positions().size()));
+    sim.restart(options.start->t, options.start->x, options.start->v);
+    first = options.start->step;
+  }
+  const int steps = std::max(0, static_cast<int>(std::ceil((s.duration - sim.time()) / s.dynamics.dt - 1e-9)));
   // Mesh, finite-cell rules, mass matrix, ...: everything before the first step.
   const auto t_steps = Clock::now();
   st["setup_seconds"] = std::chrono::duration<double>(t_steps - t_start).count();
@@ -271,8 +281,8 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
   if (progress) progress->stage(fmt::format("{} steps of dt = {:.3g} s", steps, s.dynamics.dt), 0.0);
   json per_step = json::array();
   VolumeRatioRecord deformation;
-  int done = 0;
-  for (int k = 1; k <= steps; ++k) {
+  int done = first;
+  for (int k = first + 1; k <= first + steps; ++k) {
     const StepReport r = sim.step();
     json row = step_row(k, r);
     if (!r.ok) {
@@ -291,10 +301,13 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
     if (writer && options.observer) options.observer(SceneState{mesh, emb, k, r.time, u});
     per_step.push_back(row);
     done = k;
-    if (k % s.output_every == 0 || k == steps) frame(k);
-    if (progress) progress->update(fmt::format("step {}/{}, t = {:.4g}", k, steps, sim.time()), double(k) / steps);
+    if (k % s.output_every == 0 || k == first + steps) frame(k);
+    if (progress)
+      progress->update(fmt::format("step {}/{}, t = {:.4g}", k, first + steps, sim.time()), double(k - first) / steps);
   }
   if (!options.write_frames) frame(-1);  // the last state reached, also of a failed run
+  if (!options.save_state.empty() && writer)
+    write_state(options.save_state, StoredState{options.save_state_key, sim.time(), done, sim.positions(), sim.velocities()});
   if (progress) progress->done(result.ok ? fmt::format("{} steps", done) : "failed at step " + std::to_string(done + 1));
   st["dt"] = s.dynamics.dt;
   st["duration"] = s.duration;
@@ -353,6 +366,8 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
                 {"nodes", mesh.num_nodes()}, {"elements", mesh.num_elements()}};
   st["material"] = {{"model", s.material}, {"young", s.young}, {"poisson", s.poisson}, {"density", s.density}};
   if (run.emb) st["embedded"] = run.emb->stats();
+  if ((options.start || !options.save_state.empty()) && (s.is_static || options.distributed))
+    throw SceneError(fmt::format("{}: stored states are for serial time-stepping runs", s.file));
   if (s.is_static)
     run.run_static(std::move(motions));
   else

@@ -18,6 +18,7 @@
 // are taken over the embedded surface's vertices instead of the mesh nodes.
 // With SceneRunOptions::final_frame and no frames: final.vtu (and
 // final_surface.vtu), the last state only.
+#include "io/state_file.hpp"
 #include "io/vtu_writer.hpp"
 #include "scene/scene.hpp"
 
@@ -58,6 +59,14 @@ struct SceneRunOptions {
   /// step that succeeded (a static scene: after the solve). Studies (study/)
   /// measure errors from it; it does not count in the steps' seconds.
   std::function<void(const SceneState&)> observer;
+  /// Time-stepping scenes, serial: continue from this stored state (its time
+  /// and step; the scene's duration stays the end time) instead of from rest.
+  /// Its size must be the mesh's; the caller checks its key.
+  const StoredState* start = nullptr;
+  /// Time-stepping scenes, serial: write the last state reached here (a
+  /// state file, io/state_file.hpp) under this key.
+  std::string save_state;
+  std::string save_state_key;
 };
 
 struct SceneRunResult {

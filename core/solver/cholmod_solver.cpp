@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
 #include <stdexcept>
 
 namespace hofem {
@@ -56,7 +57,9 @@ bool CholmodSolver::factorize(const SparseMatrix& A) {
   if (!factor_ || pattern_fingerprint(A) != pattern_) analyze(A);
   cholmod_sparse s = view(A);
   use_blas_threads_for(factor_flops_);
+  const auto t0 = std::chrono::steady_clock::now();
   cholmod_l_factorize(&s, factor_, &common_);
+  setup_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ++factorizations_;
   if (common_.status == CHOLMOD_NOT_POSDEF) return false;
   if (common_.status < 0) throw std::runtime_error(fmt::format("CHOLMOD factorize failed (status {})", common_.status));

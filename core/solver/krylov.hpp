@@ -53,8 +53,9 @@ inline KrylovResult gmres(const SparseMatrix& A, const Eigen::VectorXd& b, Eigen
 }
 
 /// A LinearSolver running one Krylov method (SolverMethod::Cg, Cr, Minres or
-/// Gmres) with one preconditioner; factorize() sets the preconditioner up,
-/// solve() iterates from zero and throws std::runtime_error if it does not converge.
+/// Gmres) with one preconditioner; factorize() sets the preconditioner up (or
+/// keeps the last set-up, KrylovOptions::setup_reuse), solve() iterates
+/// from zero and throws std::runtime_error if it does not converge.
 class KrylovSolver final : public LinearSolver {
  public:
   KrylovSolver(SolverMethod method, std::string_view preconditioner, KrylovOptions options = {});
@@ -64,6 +65,7 @@ class KrylovSolver final : public LinearSolver {
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) override;
   void set_mesh_view(const MeshView& d) override { M_->set_mesh_view(d); }
   void set_relative_tolerance(double rtol) override { options_.rtol = rtol; }
+  /// A fixed budget also ends set-up reuse: its trigger is the iteration count.
   bool set_fixed_iterations(int k) override {
     fixed_iterations_ = k > 0 ? k : 0;
     return true;
@@ -86,6 +88,17 @@ class KrylovSolver final : public LinearSolver {
   bool use_block_ = false;
   int fixed_iterations_ = 0;  ///< > 0: set_fixed_iterations
   KrylovResult last_;
+  // Set-up reuse (KrylovOptions::setup_reuse).
+  bool reused_ = false;          ///< the preconditioner was set up for an earlier matrix
+  bool rebuild_next_ = true;     ///< the next factorize() sets the preconditioner up
+  int baseline_iterations_ = -1; ///< the first solve's iterations after the last set-up (-1: none yet)
+  std::uint64_t setup_pattern_ = 0;  ///< pattern_fingerprint of the last matrix
+  Eigen::Index setup_rows_ = -1;
+  double last_setup_seconds_ = 0.0;   ///< S of the amortised rule (krylov.cpp)
+  double setup_cost_iterations_ = 0.0;  ///< S / t: the last set-up in iterations of its first solve
+  long long solves_since_setup_ = 0, extra_since_setup_ = 0;  ///< L and E of the amortised rule
+  bool setup_preconditioner(const SparseMatrix& A);
+  void iterate(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 };
 
 }  // namespace hofem

@@ -42,13 +42,22 @@ class LinearSolver {
   /// Why the last factorize() returned false, when the solver knows more than
   /// "not positive definite" (e.g. a preconditioner that cannot apply here).
   virtual std::string last_error() const { return {}; }
-  /// Number of symbolic analyses / numeric factorisations done (run statistics).
+  /// Number of symbolic analyses / numeric factorisations (an iterative
+  /// solver's preconditioner set-ups) done, and the matrices an iterative
+  /// solver took without a set-up of their own, keeping the last one
+  /// (KrylovOptions::setup_reuse). Run statistics.
   int analyses() const { return analyses_; }
   int factorizations() const { return factorizations_; }
+  int setup_reuses() const { return setup_reuses_; }
+  /// Wall seconds spent in numeric factorisations / preconditioner set-ups
+  /// (CHOLMOD and the Krylov solvers count them; others report 0).
+  double setup_seconds() const { return setup_seconds_; }
 
  protected:
   int analyses_ = 0;
   int factorizations_ = 0;
+  int setup_reuses_ = 0;
+  double setup_seconds_ = 0.0;
 };
 
 /// The solver a spec names (resolved: not "auto"): CHOLMOD (supernodal

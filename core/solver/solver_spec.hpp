@@ -17,12 +17,26 @@ enum class SolverMethod { Cholmod, Umfpack, EigenLdlt, HyprePcg, Cg, Cr, Minres,
 /// The name of a method as the command line spells it ("cholmod", "cg", ...).
 std::string_view method_name(SolverMethod method);
 
+/// When a Krylov solver keeps its preconditioner set-up for a new matrix of the
+/// same pattern (Newton iterations, time steps), as PETSc's
+/// -snes_lag_preconditioner_persists does with a fixed lag. A reused set-up is
+/// a fixed SPD operator, so CG stays valid; it only costs iterations. A solve
+/// that fails on a reused set-up is retried once on a fresh one.
+enum class SetupReuse {
+  Default,    ///< "auto" resolves it to Amortised; a named solver to Never
+  Never,      ///< a set-up for every matrix
+  Amortised,  ///< rebuilt when a stale solve costs more than the average since the set-up (krylov.cpp)
+  Growth,     ///< rebuilt when a solve needs more than setup_reuse_growth x the first solve's iterations
+};
+
 /// The tolerances of our Krylov methods. Newton replaces rtol before each solve
 /// (its linear tolerance or Eisenstat-Walker forcing term).
 struct KrylovOptions {
   double rtol = 1e-8;        ///< converged when the true residual ||b - A x|| <= rtol ||b||
   int max_iterations = 5000;
   int restart = 50;          ///< GMRES(m)
+  SetupReuse setup_reuse = SetupReuse::Default;
+  double setup_reuse_growth = 1.5;  ///< SetupReuse::Growth's factor (>= 1)
 };
 
 /// hypre's own Krylov method and BoomerAMG, used by every distributed solve.
