@@ -184,6 +184,19 @@ bool AdditiveSchwarzPreconditioner::build_blocks() {
   uncovered_.clear();
   for (int f = 0; f < nf; ++f)
     if (slot_ptr_[f] == slot_ptr_[f + 1]) uncovered_.push_back(f);
+  uncovered_nodes_.clear();
+  if (options_.nodal_uncovered) {
+    // A DOF map constrains whole nodes, and a block holds all free DOFs of its
+    // element's nodes, so uncovered DOFs come as the triples of free nodes.
+    if (nf % 3 != 0) return fail(fmt::format("schwarz: nodal blocks need 3 free DOFs per node ({} free DOFs)", nf));
+    for (size_t i = 0; i < uncovered_.size(); i += 3) {
+      const int f = uncovered_[i];
+      if (f % 3 != 0 || i + 2 >= uncovered_.size() || uncovered_[i + 2] != f + 2)
+        return fail(fmt::format("schwarz: free DOF {} is in no block but its node's other DOFs are", f));
+      uncovered_nodes_.push_back(f / 3);
+    }
+    uncovered_inverse_.resize(uncovered_nodes_.size());
+  }
 
   value_ptr_.assign(1, 0);
   entry_ptr_.assign(1, 0);
@@ -273,6 +286,20 @@ bool AdditiveSchwarzPreconditioner::setup(const SparseMatrix& A) {
   num_truncated_ = truncated;
   num_reflected_ = reflected;
 
+  if (options_.nodal_uncovered) {
+    for (size_t k = 0; k < uncovered_nodes_.size(); ++k) {
+      const int f = 3 * uncovered_nodes_[k];
+      Eigen::Matrix3d D;
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) D(i, j) = A.coeff(f + i, f + j);
+      const Eigen::LLT<Eigen::Matrix3d> llt(D);
+      if (llt.info() != Eigen::Success)
+        return fail(fmt::format("schwarz: the 3x3 diagonal block of free DOFs {}-{} (in no block) is not positive definite", f, f + 2));
+      uncovered_inverse_[k] = llt.solve(Eigen::Matrix3d::Identity());
+    }
+    ready_ = true;
+    return true;
+  }
   // Uncovered DOFs: 1 / |A_ii| (eq. 14 for a 1 x 1 block); covered ones stay 0.
   for (const int f : uncovered_) {
     const double d = A.coeff(f, f);
@@ -312,6 +339,12 @@ void AdditiveSchwarzPreconditioner::apply(const Eigen::VectorXd& r, Eigen::Vecto
       double zi = jacobi_[i] * r[i];
       for (std::int64_t s = slot_ptr_[i]; s < slot_ptr_[i + 1]; ++s) zi += product_[slots_[s]];
       z[i] = zi;
+    }
+    // nodal_uncovered: jacobi_ is zero, these nodes' DOFs held 0 above.
+#pragma omp for schedule(static)
+    for (size_t k = 0; k < uncovered_nodes_.size(); ++k) {
+      const Eigen::Index f = 3 * static_cast<Eigen::Index>(uncovered_nodes_[k]);
+      z.segment<3>(f) = uncovered_inverse_[k] * r.segment<3>(f);
     }
   }
 }

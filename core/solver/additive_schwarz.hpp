@@ -46,6 +46,12 @@ struct AdditiveSchwarzOptions {
   /// Cholesky: eq. 14 then changes no eigenvalue, so S_K is the same, 2.5-5x cheaper.
   /// Other blocks (indefinite, nearly singular) always take the eigen-decomposition.
   bool cholesky_fast_path = true;
+  /// DOFs in no block, taken a node at a time (its three DOFs, free indices
+  /// 3k, 3k + 1, 3k + 2): the inverse of their 3x3 diagonal block instead of
+  /// 1 / |A_ii|. The p-multigrid's smoother on finite cells uses this: the cut
+  /// cells' blocks where the volume fraction is small, the nodal blocks that
+  /// smooth elasticity best (p_multigrid.hpp) everywhere else.
+  bool nodal_uncovered = false;
 };
 
 class AdditiveSchwarzPreconditioner final : public Preconditioner {
@@ -100,7 +106,9 @@ class AdditiveSchwarzPreconditioner final : public Preconditioner {
 
   std::vector<std::int64_t> value_ptr_;  ///< per block, start of S_K in values_
   std::vector<double> values_;
-  Eigen::VectorXd jacobi_;  ///< 1/|A_ii| on uncovered DOFs, 0 on covered ones
+  Eigen::VectorXd jacobi_;  ///< 1/|A_ii| on uncovered DOFs, 0 on covered ones (not nodal_uncovered)
+  std::vector<int> uncovered_nodes_;                 ///< nodal_uncovered: k for DOFs 3k..3k+2
+  std::vector<Eigen::Matrix3d> uncovered_inverse_;   ///< their 3x3 diagonal blocks' inverses
   std::int64_t num_truncated_ = 0, num_reflected_ = 0;
 
   // apply() workspace, one entry per slot: R_K r and S_K R_K r of every block.

@@ -71,7 +71,15 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseM
     pattern_hash_ = 0;
     levels_.clear();
     levels_.resize(static_cast<size_t>(hierarchy_->num_levels() - 1));
+    if (!levels_.empty() && mesh_view_.block_elements && !mesh_view_.block_elements->empty()) {
+      AdditiveSchwarzOptions o;
+      o.nodal_uncovered = true;
+      levels_[0].blocks = std::make_unique<AdditiveSchwarzPreconditioner>(o);
+      levels_[0].blocks->set_mesh_view(mesh_view_);
+    }
   }
+  if (!levels_.empty() && levels_[0].blocks && !levels_[0].blocks->setup(A))
+    return fail("pmg: fine-level smoother: " + levels_[0].blocks->last_error());
   // The fine level's operator: the caller's block copy, or a copy of our own.
   fine_blocks_ = blocks;
   // The caller's block copy carries A's fingerprint when its builder hashed A already.
@@ -125,6 +133,7 @@ bool PMultigridPreconditioner::set_level_values(Level& level, std::size_t index)
   level.res.setZero(n);
   level.d.setZero(n);
   level.d_next.setZero(n);
+  if (level.blocks) level.w.setZero(n);
   estimate_lambda_max(level);
   return true;
 }
@@ -143,10 +152,8 @@ void PMultigridPreconditioner::estimate_lambda_max(Level& level) const {
     s ^= s << 13, s ^= s >> 7, s ^= s << 17;  // xorshift64
     r[i] = static_cast<double>(s >> 11) * 0x1.0p-53 - 0.5;
   }
-  auto scale = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) {
-#pragma omp parallel for schedule(static) if (A.parallel())
-    for (Eigen::Index b = 0; b < nb; ++b) out.segment<3>(3 * b) = level.inverse_diagonal[b] * in.segment<3>(3 * b);
-  };
+  (void)nb;
+  auto scale = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { smoother_inverse(level, in, out); };
   scale(r, z);
   p = z;
   double rz = r.dot(z), alpha_prev = 1.0, beta_prev = 0.0;
@@ -181,11 +188,52 @@ void PMultigridPreconditioner::estimate_lambda_max(Level& level) const {
   level.lambda_max = options_.eigenvalue_safety * est;
 }
 
+void PMultigridPreconditioner::smoother_inverse(const Level& level, const Eigen::VectorXd& r, Eigen::VectorXd& z) const {
+  if (level.blocks) {
+    level.blocks->apply(r, z);
+    return;
+  }
+  const Eigen::Index nb = level.smooth.block_rows();
+  z.resize(r.size());
+#pragma omp parallel for schedule(static) if (level.smooth.parallel())
+  for (Eigen::Index b = 0; b < nb; ++b) z.segment<3>(3 * b) = level.inverse_diagonal[b] * r.segment<3>(3 * b);
+}
+
+// chebyshev() below with S (the cut cells' Schwarz blocks and nodal blocks) for
+// D^-1: the same recurrence, each step a product, a pass of S and the updates.
+void PMultigridPreconditioner::chebyshev_blocks(const Level& level, Eigen::VectorXd& z, bool final_residual) const {
+  const BlockSparseMatrix<float>& A = level.smooth;
+  const double upper = level.lambda_max, lower = upper / options_.smoothing_range;
+  const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower), sigma = theta / delta;
+  double rho = 1.0 / sigma;
+  smoother_inverse(level, level.res, level.w);
+  level.d = level.w / theta;
+  z += level.d;
+  for (int k = 1; k < options_.chebyshev_degree; ++k) {
+    const double rho_next = 1.0 / (2.0 * sigma - rho), c_old = rho_next * rho, c_res = 2.0 * rho_next / delta;
+    A.multiply(level.d, level.w);
+    level.res -= level.w;
+    smoother_inverse(level, level.res, level.w);
+    level.d_next = c_old * level.d + c_res * level.w;
+    z += level.d_next;
+    level.d.swap(level.d_next);
+    rho = rho_next;
+  }
+  if (final_residual) {
+    A.multiply(level.d, level.w);
+    level.res -= level.w;
+  }
+}
+
 // Chebyshev smoothing (Saad, Iterative Methods, Alg. 12.1, with D^-1): on entry
 // level.res = b - A z; z gains a degree-k polynomial in D^-1 A applied to D^-1 res.
 // With final_residual, res is left as the residual of the new z. Each step is one
 // pass over the block rows: res -= A d on a row, then that row's new direction.
 void PMultigridPreconditioner::chebyshev(const Level& level, Eigen::VectorXd& z, bool final_residual) const {
+  if (level.blocks) {
+    chebyshev_blocks(level, z, final_residual);
+    return;
+  }
   const BlockSparseMatrix<float>& A = level.smooth;
   const double upper = level.lambda_max, lower = upper / options_.smoothing_range;
   const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower), sigma = theta / delta;

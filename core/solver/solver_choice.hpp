@@ -11,12 +11,17 @@
 //  - order 1: no coarser p level. CHOLMOD below 30,000 free unknowns (P1 n = 16,
 //    14k unknowns: 0.37 s direct vs 0.46 s CG + BoomerAMG, whose set-up costs
 //    ~0.3 s at any size), CG + BoomerAMG above (P1 n = 24, 45k: 1.34 vs 1.12 s).
-//  - finite cells (embedded): CHOLMOD. The p-multigrid works there (the twisting
-//    Hex20 finite-cell cylinder on an 8 x 8 x 12 grid, 15 implicit steps, 33
-//    Newton iterations each way, one thread: CG + pmg 103 iterations per solve,
-//    33.4 s; CG + Schwarz 247, 20.6 s; CG + Jacobi 1097, 37.9 s; CHOLMOD 21.1 s),
-//    but cut cells with small volume fractions cost it iterations a conforming
-//    mesh does not, and at these sizes CHOLMOD is as fast as the best of them.
+//  - finite cells (embedded), order >= 2: CG + p-multigrid whose fine-level
+//    smoother takes the cut cells' Schwarz blocks (p_multigrid.hpp), CHOLMOD
+//    below kEmbeddedDirectLimit unknowns. Before the blocks the p-multigrid
+//    needed 2.6x the iterations on cut cells (Hex20 twisting cylinder, 29 k
+//    unknowns, nu = 0.48: 1343 against 517 CG iterations over 9 Newton solves)
+//    and CHOLMOD was the choice at every size. The limit is fitted to
+//    BM_ImplicitStep (benchmarks/bench_implicit_step.cpp).
+//  - finite cells of order 1 (a Hex8 background) follow the order-1 rule.
+//  - "auto" reuses preconditioner set-ups across Newton iterations and time
+//    steps by the amortised rule (SetupReuse, solver/krylov.cpp); a named
+//    solver sets up every matrix unless its spec says otherwise.
 //  - distributed runs do not ask: they always solve on hypre.
 #include "solver/solver_spec.hpp"
 
@@ -42,7 +47,7 @@ struct SolverChoice {
 SolverChoice choose_linear_solver(const SystemTraits& traits);
 
 /// `spec` itself ("given"), or for "auto" the choice for `traits`, keeping the
-/// spec's iteration budget and distributed options.
+/// spec's iteration budget, Krylov options (set-up reuse) and distributed options.
 SolverChoice resolve_linear_solver(const SolverSpec& spec, const SystemTraits& traits);
 
 }  // namespace hofem
