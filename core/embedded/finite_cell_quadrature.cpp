@@ -119,7 +119,9 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
   out.points_after.assign(ne, 0);
   out.moment_residual.assign(ne, 0.0);
   std::vector<double> lp_seconds(ne, 0.0), gen_seconds(ne, 0.0);
-  std::vector<char> failed(ne, 0);
+  std::vector<char> failed(ne, 0), fit_failed(ne, 0);
+  std::vector<int> mass_clipped(ne, 0);
+  std::vector<double> fit_residual(ne, 0.0), fit_ratio(ne, 0.0);
   const double reference_volume = cell == CellType::Tetrahedron ? 1.0 / 6.0 : 8.0;
 
   // Cells are independent; dynamic schedule because cut cells cost far more.
@@ -153,11 +155,24 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
       continue;
     }
     auto [xm, wm] = clipped(out.mass_degree);
+    mass_clipped[e] = static_cast<int>(wm.size());
+    if (options.fit_mass) {
+      FittedRule f = fit_quadrature(xm, wm, out.mass_degree);
+      // Accepted at the LP's own bound (SimplificationOptions::max_moment_residual).
+      if (f.fitted && f.moment_residual <= 1e-11) {
+        xm = std::move(f.points);
+        wm = std::move(f.weights);
+        fit_residual[e] = f.moment_residual;
+        fit_ratio[e] = f.absolute_weight_ratio;
+      } else {
+        fit_failed[e] = f.fitted;
+      }
+    }
     gen_seconds[e] = seconds_since(tc);
     out.points_before[e] = static_cast<int>(ws.size());
     const auto tl = Clock::now();
     if (options.simplify) {
-      SimplifiedRule s = simplify_quadrature(xs, ws, out.stiffness_degree);
+      SimplifiedRule s = simplify_quadrature(xs, ws, out.stiffness_degree, options.simplification);
       failed[e] = !s.simplified && s.points_before > s.basis_size;  // N <= M is returned as is, not a failure
       out.moment_residual[e] = s.moment_residual;
       if (s.simplified) {
@@ -174,6 +189,10 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
     out.points += out.points_before[e];
     out.simplified_points += out.points_after[e];
     if (out.mass_rules[e]) out.mass_points += out.mass_rules[e]->rule.size();
+    out.mass_points_clipped += mass_clipped[e];
+    out.max_mass_moment_residual = std::max(out.max_mass_moment_residual, fit_residual[e]);
+    out.max_mass_weight_ratio = std::max(out.max_mass_weight_ratio, fit_ratio[e]);
+    out.mass_fit_failures += fit_failed[e];
     out.simplification_failures += failed[e];
     out.max_moment_residual = std::max(out.max_moment_residual, out.moment_residual[e]);
     out.simplification_seconds += lp_seconds[e];
@@ -228,7 +247,7 @@ StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& c
     auto [xs, ws] = with_gauss_points(cells.rules[e]->rule);
     if (options.simplify_degree >= 0) {
       const auto tl = Clock::now();
-      SimplifiedRule s = simplify_quadrature(xs, ws, options.simplify_degree);
+      SimplifiedRule s = simplify_quadrature(xs, ws, options.simplify_degree, options.simplification);
       lp_seconds[e] = seconds_since(tl);
       if (s.simplified) {
         xs = std::move(s.points);

@@ -9,6 +9,7 @@
 #include "fcm_convergence_checks.hpp"
 #include "fcm_load_checks.hpp"
 #include "fcm_rigid_motion_checks.hpp"
+#include "fcm_setup_checks.hpp"
 #include "material_checks.hpp"
 #include "partition_checks.hpp"
 #include "provenance/progress.hpp"
@@ -45,6 +46,7 @@ std::vector<CheckFamily> make_families() {
       {"fig4", "embedded quadrature (Fig. 4)", {"embedded.fig4"}, "fast", false, 3.2, 3.2,
        plain<add_embedded_quadrature_checks>},
       {"loads", "embedded loads", {"embedded.loads"}, "fast", false, 1.8, 1.8, plain<add_fcm_load_checks>},
+      {"setup", "finite cell set-up", {"embedded.setup"}, "fast", false, 3.0, 3.0, plain<add_fcm_setup_checks>},
       {"partition", "partition", {"partition."}, "fast", false, 0.1, 0.1, plain<add_partition_checks>},
       {"solvers", "solvers", {"solvers."}, "mpi", false, 8.8, 8.8, plain<add_solver_checks>},
       {"mms", "manufactured solutions", {"mms."}, "convergence", true, 60.0, 82.0,

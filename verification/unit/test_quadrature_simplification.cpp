@@ -3,6 +3,7 @@
 #include "embedded/embedded_quadrature.hpp"
 #include "embedded/quadrature_simplification.hpp"
 #include "mesh/box_mesh.hpp"
+#include "mesh/tube_mesh.hpp"
 #include "quadrature/rule_library.hpp"
 
 #include <Eigen/LU>
@@ -290,6 +291,116 @@ TEST(QuadratureSimplification, ConcurrentCallsGiveTheSerialResult) {
     EXPECT_EQ(tb[i].points, sb.points);
     EXPECT_EQ(tb[i].weights, sb.weights);
   }
+}
+
+}  // namespace
+}  // namespace hofem
+
+namespace hofem {
+namespace {
+
+// The clipped degree-m rule of the twisting-cylinder scene's tube (r 0.5 to 1,
+// height 3, 1 x 16 x 8 cells of 6 tets) over the box [lo, hi]: a real cut cell,
+// thousands of points on a curved wall.
+Rule tube_cell_rule(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int m) {
+  const std::vector<Tetrahedron> tets =
+      mesh_tetrahedra(hollow_cylinder_mesh(0.5, 1.0, 3.0, 1, 16, 8, CellType::Tetrahedron, 1));
+  const PhysicalRule p = box_cell_rule(tets, BoxBucketGrid(bounding_boxes(tets)), lo, hi, m);
+  Rule r{Eigen::MatrixXd(3, p.size()), Eigen::VectorXd(p.size())};
+  for (int q = 0; q < p.size(); ++q) {
+    r.points.col(q) = p.points[q];
+    r.weights[q] = p.weights[q];
+  }
+  return r;
+}
+
+// Largest |Q_1(f) - Q_0(f)| / Q_0(|f|) over the monomials f = u^a v^b w^c with
+// a + b + c = the given degrees, u = (x - lo) / (hi - lo) per axis, in long double.
+double monomial_difference(const Rule& r0, const Eigen::MatrixXd& x1, const Eigen::VectorXd& w1,
+                           const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, int min_degree, int max_degree) {
+  double worst = 0.0;
+  for (int a = 0; a <= max_degree; ++a)
+    for (int b = 0; a + b <= max_degree; ++b)
+      for (int c = 0; a + b + c <= max_degree; ++c) {
+        if (a + b + c < min_degree) continue;
+        auto f = [&](const Eigen::Vector3d& x) {
+          const Eigen::Vector3d u = (x - lo).cwiseQuotient(hi - lo);
+          return std::pow(static_cast<long double>(u.x()), a) * std::pow(static_cast<long double>(u.y()), b) *
+                 std::pow(static_cast<long double>(u.z()), c);
+        };
+        long double q0 = 0.0L, q0_abs = 0.0L, q1 = 0.0L;
+        for (Eigen::Index j = 0; j < r0.weights.size(); ++j) {
+          q0 += r0.weights[j] * f(r0.points.col(j));
+          q0_abs += std::fabs(r0.weights[j] * f(r0.points.col(j)));
+        }
+        for (Eigen::Index j = 0; j < w1.size(); ++j) q1 += w1[j] * f(x1.col(j));
+        worst = std::max(worst, static_cast<double>(std::fabs(q1 - q0) / q0_abs));
+      }
+  return worst;
+}
+
+// The fast path (CholeskyQR2 and an updated QR) reaches the reference path's
+// answer: the same points, bit for bit and in the same order (the active set's
+// iterates are invariant under an orthogonal change of its constraints, so only
+// rounding separates the two), and the same moments to rounding. Cut cells of the
+// cylinder scene at the stiffness degrees of Hex8 and Hex20 (4, 6), ~1e3-1e4 points.
+TEST(QuadratureSimplification, FastPathKeepsTheReferencePoints) {
+  const std::pair<Eigen::Vector3d, Eigen::Vector3d> boxes[] = {
+      {{0.0, 0.0, 0.0}, {1.0, 1.0, 1.5}}, {{-1.0, 0.0, 1.5}, {0.0, 1.0, 3.0}}, {{0.5, -0.5, 0.0}, {1.0, 0.0, 0.75}}};
+  int compared = 0;
+  for (const auto& [lo, hi] : boxes)
+    for (int m : {4, 6}) {
+      const Rule r = tube_cell_rule(lo, hi, m);
+      ASSERT_GT(r.weights.size(), 10 * polynomial_space_dimension(m));
+      SimplificationOptions reference;
+      reference.fast = false;
+      const SimplifiedRule s0 = simplify_quadrature(r.points, r.weights, m, reference);
+      const SimplifiedRule s1 = simplify_quadrature(r.points, r.weights, m);
+      ASSERT_TRUE(s0.simplified && s1.simplified) << s0.message << " / " << s1.message;
+      EXPECT_FALSE(s0.fast);
+      EXPECT_TRUE(s1.fast) << s1.message;  // the fast path answered, not its fallback
+      EXPECT_EQ(s1.points, s0.points) << "m = " << m;
+      // Both keep the moments to their residual (<= 1e-15 of the weights' sum in
+      // the Chebyshev basis); in monomials of the box coordinates (|f| <= 1 on the
+      // points) that is ~1e-15 of Q_0(|f|) for low degrees and up to ~1e-13 for
+      // the smallest degree-6 monomials, whose Q_0(|f|) is ~1e-2 of the volume:
+      // 1e-12 leaves a margin of 10.
+      EXPECT_LE(monomial_difference(r, s1.points, s1.weights, lo, hi, 0, m), 1e-12) << "m = " << m;
+      EXPECT_LE(s1.moment_residual, 1e-14);
+      ++compared;
+    }
+  EXPECT_EQ(compared, 6);
+}
+
+// Moment fitting keeps every moment of degree <= m (here m = 8, the Hex20 mass
+// degree) with C(m+3, 3) points, and no more: degree m + 1 is visibly off, so
+// the first bound is not met by a rule that merely copies the input. Bounds: the
+// fitted weights' |w| sum stays within a few times the volume (measured <= 2.4 on
+// the cylinder's cut cells), so the monomials agree to the rounding of the
+// moments (~1e-15 relative to the sum of |w0 f|) times that and the fitting
+// matrix's conditioning (fitting_condition, checked below): 1e-12.
+TEST(QuadratureSimplification, MomentFittingKeepsEveryMomentUpToItsDegree) {
+  const int m = 8, M = polynomial_space_dimension(m);
+  EXPECT_LT(fitting_condition(m), 1e3);
+  const std::pair<Eigen::Vector3d, Eigen::Vector3d> boxes[] = {{{0.0, 0.0, 0.0}, {1.0, 1.0, 1.5}},
+                                                               {{0.5, -0.5, 0.0}, {1.0, 0.0, 0.75}}};
+  for (const auto& [lo, hi] : boxes) {
+    const Rule r = tube_cell_rule(lo, hi, m);
+    const FittedRule f = fit_quadrature(r.points, r.weights, m);
+    ASSERT_TRUE(f.fitted) << f.message;
+    EXPECT_EQ(f.size(), M);
+    EXPECT_LE(f.moment_residual, 1e-14);
+    EXPECT_LE(f.absolute_weight_ratio, 10.0);
+    EXPECT_LE(monomial_difference(r, f.points, f.weights, lo, hi, 0, m), 1e-12);
+    EXPECT_GT(monomial_difference(r, f.points, f.weights, lo, hi, m + 1, m + 1), 1e-6);
+    // The points stay in the input's bounding box (inside the cell).
+    const Eigen::Vector3d a = r.points.rowwise().minCoeff(), b = r.points.rowwise().maxCoeff();
+    for (int q = 0; q < f.size(); ++q)
+      EXPECT_TRUE((f.points.col(q).array() >= a.array()).all() && (f.points.col(q).array() <= b.array()).all());
+  }
+  // Nothing to fit: N <= M returns the input.
+  const Rule small = tet_subdivided_box({0, 0, 0}, {1, 1, 1}, 1, 2);
+  EXPECT_FALSE(fit_quadrature(small.points, small.weights, m).fitted);
 }
 
 }  // namespace
