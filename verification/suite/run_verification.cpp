@@ -14,6 +14,7 @@
 #include "partition_checks.hpp"
 #include "provenance/progress.hpp"
 #include "quadrature_checks.hpp"
+#include "solver_agreement_checks.hpp"
 #include "solver_checks.hpp"
 #include "study_checks.hpp"
 
@@ -59,6 +60,8 @@ std::vector<CheckFamily> make_families() {
       {"fig10", "finite cell Fig. 10", {"embedded.fig10"}, "convergence", true, 20.0, 53.0,
        [](Report& r, const SuiteOptions& o) { add_fcm_convergence_checks(r, o.convergence); }},
       {"study", "scene error measures", {"study"}, "convergence", true, 12.0, 12.0, plain<add_study_checks>},
+      {"agreement", "iterative vs direct", {"agreement.iterative_direct"}, "convergence", true, 20.0, 20.0,
+       plain<add_solver_agreement_checks>},
   };
 }
 
