@@ -32,14 +32,9 @@ void TimeStepper::set_state(const Eigen::VectorXd& value, Eigen::VectorXd& into,
 
 void TimeStepper::restart(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v) {
   if (!std::isfinite(t)) throw std::invalid_argument("dynamics: restart time must be finite");
-  if (x.size() != x_.size() || v.size() != v_.size() || !x.allFinite() || !v.allFinite())
-    throw std::invalid_argument(fmt::format("dynamics: a restart needs {} finite positions and velocities", x_.size()));
-  t_ = t;
-  x_ = x;
-  v_ = v;
-  body_.impose_motion(t_, x_, &v_);
-  a_valid_ = false;
-  energy_reference_ = -1.0;
+  t_ = t;  // first: set_state imposes the motion at t_
+  set_positions(x);
+  set_velocities(v);
 }
 
 void TimeStepper::ensure_linear_solver() {

@@ -17,6 +17,7 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 namespace hofem {
@@ -168,81 +169,6 @@ Eigen::VectorXd solve_on(const Eigen::MatrixXd& A, const Eigen::VectorXd& c, con
   return AS.colPivHouseholderQr().solve(c);
 }
 
-// Lawson & Hanson (1974), "Solving Least Squares Problems", ch. 23: the active-set
-// method for min |A w - c| over w >= 0. Its passive (positive) columns stay
-// linearly independent, so it ends with at most rank(A) = r positive weights: when
-// c lies in the cone of A's columns (it does: w0 >= 0 is a solution), a basic
-// feasible point of eq. 10, the same kind of answer as the simplex's.
-struct ActiveSetResult {
-  std::vector<int> support;
-  Eigen::VectorXd weights;
-  bool converged = false;
-};
-
-ActiveSetResult active_set_nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd& c, int max_iterations) {
-  const Eigen::Index n = A.cols();
-  std::vector<char> passive(static_cast<size_t>(n), 0);
-  std::vector<int> P;
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(n), r = c, z;
-  // A's rows are orthonormal (|A^T r| <= |r|): a gradient below this is rounding
-  // of a residual at the level of eps |c| per column summed over the N columns.
-  const double tolerance = 16.0 * std::numeric_limits<double>::epsilon() * c.norm() * std::sqrt(static_cast<double>(n));
-  ActiveSetResult out;
-  for (int iteration = 0; iteration < max_iterations; ++iteration) {
-    const Eigen::VectorXd g = A.transpose() * r;  // the negative gradient of |A w - c|^2 / 2
-    Eigen::Index best = -1;
-    double largest = tolerance;
-    for (Eigen::Index j = 0; j < n; ++j)
-      if (!passive[static_cast<size_t>(j)] && g[j] > largest) {
-        largest = g[j];
-        best = j;
-      }
-    if (best < 0) {
-      out.converged = true;
-      break;
-    }
-    passive[static_cast<size_t>(best)] = 1;
-    P.push_back(static_cast<int>(best));
-    // Inner loop: step from w towards the unconstrained solution z on P as far as
-    // w stays >= 0, drop the columns that reach zero, and solve again.
-    bool positive = false;
-    for (size_t inner = 0; inner <= P.size() && !P.empty(); ++inner) {
-      z = solve_on(A, c, P);  // argmin |A_P z - c|
-      if ((z.array() > 0.0).all()) {
-        positive = true;
-        break;
-      }
-      double alpha = 1.0;
-      size_t blocking = 0;
-      for (size_t k = 0; k < P.size(); ++k) {
-        const double zk = z[static_cast<Eigen::Index>(k)];
-        if (zk <= 0.0 && w[P[k]] / (w[P[k]] - zk) < alpha) {
-          alpha = w[P[k]] / (w[P[k]] - zk);
-          blocking = k;
-        }
-      }
-      std::vector<int> kept;
-      for (size_t k = 0; k < P.size(); ++k) {
-        double& wk = w[P[k]];
-        wk = k == blocking ? 0.0 : wk + alpha * (z[static_cast<Eigen::Index>(k)] - wk);
-        if (wk > 0.0) {
-          kept.push_back(P[k]);
-        } else {
-          wk = 0.0;
-          passive[static_cast<size_t>(P[k])] = 0;
-        }
-      }
-      P = std::move(kept);
-    }
-    if (positive)
-      for (size_t k = 0; k < P.size(); ++k) w[P[k]] = z[static_cast<Eigen::Index>(k)];
-    r = c;
-    for (const int j : P) r -= w[j] * A.col(j);
-  }
-  out.support = P;
-  out.weights = w(P);
-  return out;
-}
 
 // The fast path to the same active-set answer (SimplificationOptions::fast).
 //
@@ -354,22 +280,68 @@ class UpdatedQR {
   Eigen::Index k_ = 0;
 };
 
-// active_set_nnls with the updated factorisation: the same steps, decisions and
-// stopping rule; the final weights come from a fresh solve on the passive set
-// (as the reference's last solve). `dependent` is set when a column to append
-// was dependent to rounding (the caller then runs the reference).
-ActiveSetResult active_set_nnls_updated(const Eigen::MatrixXd& A, const Eigen::VectorXd& c, int max_iterations,
-                                        bool& dependent) {
+// The least squares on the passive columns P, min |A_P z - c|, as the active
+// set below asks for it: a column appended, columns removed (by position in P),
+// a solve. The reference solves afresh each time (solve_on); the fast path
+// updates a QR factorisation (UpdatedQR). append() is false when the column is
+// dependent on the passive ones to rounding (the fast path then hands the cell
+// to the reference).
+class FreshLeastSquares {
+ public:
+  FreshLeastSquares(const Eigen::MatrixXd& A, const Eigen::VectorXd& c) : A_(A), c_(c) {}
+  bool append(Eigen::Index j) {
+    P_.push_back(static_cast<int>(j));
+    return true;
+  }
+  void remove(Eigen::Index k) { P_.erase(P_.begin() + k); }
+  Eigen::VectorXd solve() const { return solve_on(A_, c_, P_); }
+
+ private:
+  const Eigen::MatrixXd& A_;
+  const Eigen::VectorXd& c_;
+  std::vector<int> P_;
+};
+
+class UpdatedLeastSquares {
+ public:
+  UpdatedLeastSquares(const Eigen::MatrixXd& A, const Eigen::VectorXd& c) : A_(A), qr_(A.rows(), c) {}
+  bool append(Eigen::Index j) { return qr_.append(A_.col(j)); }
+  void remove(Eigen::Index k) { qr_.remove(k); }
+  Eigen::VectorXd solve() const { return qr_.solve(); }
+
+ private:
+  const Eigen::MatrixXd& A_;
+  UpdatedQR qr_;
+};
+
+// Lawson & Hanson (1974), "Solving Least Squares Problems", ch. 23: the active-set
+// method for min |A w - c| over w >= 0. Its passive (positive) columns stay
+// linearly independent, so it ends with at most rank(A) = r positive weights: when
+// c lies in the cone of A's columns (it does: w0 >= 0 is a solution), a basic
+// feasible point of eq. 10, the same kind of answer as the simplex's. `ls` solves
+// on the passive columns (FreshLeastSquares or UpdatedLeastSquares: the same
+// steps and decisions); `dependent` is set when it refused a column. The fast
+// path's final weights come from a fresh solve on the passive set.
+struct ActiveSetResult {
+  std::vector<int> support;
+  Eigen::VectorXd weights;
+  bool converged = false;
+};
+
+template <class LeastSquares>
+ActiveSetResult active_set_nnls(const Eigen::MatrixXd& A, const Eigen::VectorXd& c, int max_iterations,
+                                LeastSquares& ls, bool& dependent) {
   const Eigen::Index n = A.cols();
   std::vector<char> passive(static_cast<size_t>(n), 0);
   std::vector<int> P;
   Eigen::VectorXd w = Eigen::VectorXd::Zero(n), r = c, z;
+  // A's rows are orthonormal (|A^T r| <= |r|): a gradient below this is rounding
+  // of a residual at the level of eps |c| per column summed over the N columns.
   const double tolerance = 16.0 * std::numeric_limits<double>::epsilon() * c.norm() * std::sqrt(static_cast<double>(n));
-  UpdatedQR qr(A.rows(), c);
   ActiveSetResult out;
   dependent = false;
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
-    const Eigen::VectorXd g = A.transpose() * r;
+    const Eigen::VectorXd g = A.transpose() * r;  // the negative gradient of |A w - c|^2 / 2
     Eigen::Index best = -1;
     double largest = tolerance;
     for (Eigen::Index j = 0; j < n; ++j)
@@ -381,15 +353,17 @@ ActiveSetResult active_set_nnls_updated(const Eigen::MatrixXd& A, const Eigen::V
       out.converged = true;
       break;
     }
-    if (!qr.append(A.col(best))) {
+    if (!ls.append(best)) {
       dependent = true;
       return out;
     }
     passive[static_cast<size_t>(best)] = 1;
     P.push_back(static_cast<int>(best));
+    // Inner loop: step from w towards the unconstrained solution z on P as far as
+    // w stays >= 0, drop the columns that reach zero, and solve again.
     bool positive = false;
     for (size_t inner = 0; inner <= P.size() && !P.empty(); ++inner) {
-      z = qr.solve();
+      z = ls.solve();  // argmin |A_P z - c|
       if ((z.array() > 0.0).all()) {
         positive = true;
         break;
@@ -414,9 +388,9 @@ ActiveSetResult active_set_nnls_updated(const Eigen::MatrixXd& A, const Eigen::V
           passive[static_cast<size_t>(P[k])] = 0;
         }
       }
-      // Remove the dropped columns from the factorisation, last first (positions stay valid).
+      // The dropped columns leave the least squares, last first (positions stay valid).
       for (size_t k = P.size(); k-- > 0;)
-        if (w[P[k]] == 0.0) qr.remove(static_cast<Eigen::Index>(k));
+        if (w[P[k]] == 0.0) ls.remove(static_cast<Eigen::Index>(k));
       P = std::move(kept);
     }
     if (positive)
@@ -425,7 +399,8 @@ ActiveSetResult active_set_nnls_updated(const Eigen::MatrixXd& A, const Eigen::V
     for (const int j : P) r -= w[j] * A.col(j);
   }
   out.support = P;
-  out.weights = out.converged && !P.empty() ? solve_on(A, c, P) : Eigen::VectorXd(w(P));
+  constexpr bool fresh = std::is_same_v<LeastSquares, FreshLeastSquares>;
+  out.weights = !fresh && out.converged && !P.empty() ? solve_on(A, c, P) : Eigen::VectorXd(w(P));
   return out;
 }
 
@@ -535,7 +510,8 @@ SimplifiedRule simplify_quadrature(const Eigen::MatrixXd& points, const Eigen::V
     };
     double residual = kInfinity;
     if (fast) {
-      nn = active_set_nnls_updated(A, c, iterations, dependent);
+      UpdatedLeastSquares ls(A, c);
+      nn = active_set_nnls(A, c, iterations, ls, dependent);
       residual = residual_of(nn);
       // A passive column dependent to rounding (P has full rank, so rare), or an
       // answer the reference could have accepted differently: the reference path
@@ -548,7 +524,8 @@ SimplifiedRule simplify_quadrature(const Eigen::MatrixXd& points, const Eigen::V
       }
     }
     if (!fast) {
-      nn = active_set_nnls(A, c, iterations);
+      FreshLeastSquares ls(A, c);
+      nn = active_set_nnls(A, c, iterations, ls, dependent);
       residual = residual_of(nn);
     }
     if (nn.converged && residual <= options.max_moment_residual) {

@@ -145,14 +145,13 @@ bool PMultigridPreconditioner::set_level_values(Level& level, std::size_t index)
 // are reproducible and no smooth mode is missed.
 void PMultigridPreconditioner::estimate_lambda_max(Level& level) const {
   const BlockSparseMatrix<float>& A = level.smooth;
-  const Eigen::Index n = A.rows(), nb = A.block_rows();
+  const Eigen::Index n = A.rows();
   Eigen::VectorXd r(n), z(n), p, q(n);
   std::uint64_t s = 88172645463325252ull;
   for (Eigen::Index i = 0; i < n; ++i) {
     s ^= s << 13, s ^= s >> 7, s ^= s << 17;  // xorshift64
     r[i] = static_cast<double>(s >> 11) * 0x1.0p-53 - 0.5;
   }
-  (void)nb;
   auto scale = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { smoother_inverse(level, in, out); };
   scale(r, z);
   p = z;

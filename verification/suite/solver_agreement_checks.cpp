@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -82,10 +83,12 @@ void add_solver_agreement_checks(Report& report) {
     const RecordedRun direct = record_run(parse_scene(f.scene, origin, direct_o), "", frames);
     const RecordedRun krylov = record_run(parse_scene(f.scene, origin, iterative_o), "", frames);
     const std::string label = fmt::format("{} ({} vs cholmod)", f.name, iterative.name());
-    const bool ok = direct.ok && krylov.ok;
-    report.check(group, label + ": both runs completed", ok ? 1.0 : 0.0, 1.0, Compare::AtLeast,
-                 ok ? "both reached the last frame" : direct.ok ? krylov.message : direct.message);
-    if (!ok) continue;
+    const std::string check = label + ": max over frames of the surface RMS distance [m]";
+    if (!direct.ok || !krylov.ok) {  // a run that did not reach the last frame has no distance: the check fails
+      report.check(group, check, std::numeric_limits<double>::infinity(), 1e-3 * kStudyThreshold, Compare::AtMost,
+                   fmt::format("a run failed: {}", direct.ok ? krylov.message : direct.message));
+      continue;
+    }
     const ReferenceMeasure measure(direct, 0);
     double worst = 0.0, worst_field = 0.0;
     for (const StateError& e : scene_error(krylov, measure, 0)) {
@@ -97,7 +100,7 @@ void add_solver_agreement_checks(Report& report) {
                    fmt::format("{} Krylov iterations, {} set-ups, {} reuses ({})", built.value("linear_iterations", 0),
                                built.value("factorizations", 0), built.value("setup_reuses", 0),
                                built.value("linear_solver", std::string())));
-    report.check(group, label + ": max over frames of the surface RMS distance [m]", worst, 1e-3 * kStudyThreshold,
+    report.check(group, check, worst, 1e-3 * kStudyThreshold,
                  Compare::AtMost,
                  fmt::format("1e-3 of the study threshold {} m: Newton stops both at |g| <= 1e-9 of the "
                              "representative force, so only that residual separates them; {} unknowns, {} frames",
