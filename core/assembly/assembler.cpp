@@ -390,6 +390,48 @@ SparseMatrix Assembler::mass_matrix(double density, int degree) const {
   return M;
 }
 
+// The node graph of the elements (every node, constrained ones too), then the
+// element masses added by colour: elements of one colour share no node, so each
+// column is written by one thread at a time.
+NodalMatrix Assembler::nodal_mass_matrix(double density, int degree) const {
+  const int nn = mesh_.num_nodes(), ne = mesh_.num_elements(), n = mesh_.nodes_per_element();
+  std::vector<int> first(static_cast<size_t>(nn) + 1, 0), incident(static_cast<size_t>(ne) * n);
+  for (int e = 0; e < ne; ++e)
+    for (int i = 0; i < n; ++i) ++first[mesh_.elements(i, e) + 1];
+  for (int v = 0; v < nn; ++v) first[v + 1] += first[v];
+  {
+    std::vector<int> next(first.begin(), first.end() - 1);
+    for (int e = 0; e < ne; ++e)
+      for (int i = 0; i < n; ++i) incident[next[mesh_.elements(i, e)]++] = e;
+  }
+  NodalMatrix Ms(nn, nn);
+  std::vector<int> start(static_cast<size_t>(nn) + 1, 0), rows, scratch;
+  for (int v = 0; v < nn; ++v) {
+    scratch.clear();
+    for (int k = first[v]; k < first[v + 1]; ++k)
+      for (int i = 0; i < n; ++i) scratch.push_back(mesh_.elements(i, incident[k]));
+    std::sort(scratch.begin(), scratch.end());
+    scratch.erase(std::unique(scratch.begin(), scratch.end()), scratch.end());
+    rows.insert(rows.end(), scratch.begin(), scratch.end());
+    start[v + 1] = static_cast<int>(rows.size());
+  }
+  Ms.resizeNonZeros(static_cast<Eigen::Index>(rows.size()));
+  std::copy(start.begin(), start.end(), Ms.outerIndexPtr());
+  std::copy(rows.begin(), rows.end(), Ms.innerIndexPtr());
+  std::fill_n(Ms.valuePtr(), rows.size(), 0.0);
+  double* values = Ms.valuePtr();
+  for_each_element_mass(mesh_, *pattern_, mass_quadrature_, density, degree, [&](int e, const auto& Me) {
+    for (int j = 0; j < n; ++j) {
+      const int c = mesh_.elements(j, e);
+      const int* col = rows.data() + start[c];
+      const int len = start[c + 1] - start[c];
+      for (int i = 0; i < n; ++i)
+        values[start[c] + (std::lower_bound(col, col + len, mesh_.elements(i, e)) - col)] += Me(i, j);
+    }
+  });
+  return Ms;
+}
+
 Eigen::VectorXd Assembler::lumped_mass(double density, int degree, MassLumping lumping) const {
   Eigen::VectorXd m = Eigen::VectorXd::Zero(3 * mesh_.num_nodes());
   for_each_element_mass(mesh_, *pattern_, mass_quadrature_, density, degree, [&](int e, const auto& Me) {

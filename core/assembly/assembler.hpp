@@ -95,6 +95,11 @@ class Assembler {
   /// Consistent mass matrix int rho N_i N_j (identity in the components) over the
   /// free DOFs, rule of degree >= 2p for any order.
   SparseMatrix mass_matrix(double density, int degree) const;
+  /// The same mass over all nodes as a scalar node matrix Ms (M = Ms (x) I3, with
+  /// constrained nodes): 1/9 of mass_matrix()'s entries plus its prescribed
+  /// rows, 12 bytes per node pair instead of 48 per DOF pair (dynamics keeps it
+  /// for the whole run).
+  NodalMatrix nodal_mass_matrix(double density, int degree) const;
   /// Lumped mass per DOF (all 3 * num_nodes DOFs; the three of a node equal).
   Eigen::VectorXd lumped_mass(double density, int degree, MassLumping lumping) const;
   /// M r for the consistent mass over all DOFs, element by element (no matrix):

@@ -15,6 +15,11 @@ namespace hofem {
 
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, std::int64_t>;
 
+/// A scalar matrix over the mesh nodes (node i, node j), 32-bit indices: the
+/// consistent mass of an isotropic density is this times the 3x3 identity, so
+/// it is stored once per node pair instead of three times over the DOFs.
+using NodalMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
 /// An allocator whose resize() leaves new elements uninitialised (default-init
 /// instead of value-init): value arrays of ~100 MB are written in parallel right
 /// after allocation, so a serial zero fill first would double their cost.

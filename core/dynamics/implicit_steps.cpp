@@ -73,7 +73,7 @@ class TimeStepper::IncrementalPotential final : public NonlinearProblem {
     // owned nodes' floor blocks); hypre sums the shares.
     if (s_.options().floor) s_.options().floor->add_hessian(x_, s_.dofs(), K, s_.disc().counted_nodes());
     if (!s_.mass().lumped()) {
-      add_scaled(K, inertia_, s_.mass().free_matrix());
+      s_.mass().add_free_to(K, inertia_);
     } else {
       const Eigen::VectorXd m = s_.dofs().restrict(s_.mass().diagonal());
       for (Eigen::Index i = 0; i < m.size(); ++i) K.coeffRef(i, i) += inertia_ * m[i];
@@ -116,7 +116,7 @@ class TimeStepper::IncrementalPotential final : public NonlinearProblem {
     for (int k = 0; k < z.size(); ++k) x_[s_.dofs().free_dofs()[k]] = y_n_[k] + z[k];
   }
   Eigen::VectorXd mass_free(const Eigen::VectorXd& w) const {
-    if (!s_.mass().lumped()) return s_.mass().free_matrix() * w;
+    if (!s_.mass().lumped()) return s_.mass().free_times(w);
     return s_.dofs().restrict(s_.mass().diagonal()).cwiseProduct(w);
   }
   double quadratic(const Eigen::VectorXd& y) const {
@@ -245,7 +245,7 @@ void TimeStepper::step_semi_implicit(StepReport& report) {
   const Eigen::VectorXd vf = dofs.restrict(v_);
   Eigen::VectorXd Mv, Mfree_diag;
   if (!mass.lumped()) {
-    Mv = mass.free_matrix() * vf;
+    Mv = mass.free_times(vf);
     if (body_.moving_boundary()) f -= mass.consistent_times(body_.prescribed_accelerations(t_ + h));
   } else {
     Mfree_diag = dofs.restrict(mass.diagonal());
@@ -256,7 +256,7 @@ void TimeStepper::step_semi_implicit(StepReport& report) {
   // A = (1 + h alpha) M + (h beta + h^2) K, in K's storage.
   Eigen::Map<Eigen::VectorXd>(K_.valuePtr(), K_.nonZeros()) *= h * beta + h * h;
   if (!mass.lumped()) {
-    add_scaled(K_, 1.0 + h * alpha, mass.free_matrix());
+    mass.add_free_to(K_, 1.0 + h * alpha);
   } else {
     for (Eigen::Index i = 0; i < Mfree_diag.size(); ++i) K_.coeffRef(i, i) += (1.0 + h * alpha) * Mfree_diag[i];
   }

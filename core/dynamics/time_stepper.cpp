@@ -44,7 +44,8 @@ void TimeStepper::ensure_linear_solver() {
   body_.counters().linear_solver = disc.solver_name(choice);
   body_.counters().linear_solver_reason = choice.reason;
   solver_ = disc.make_solver(choice.spec, options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
-  K_ = disc.assembler().new_matrix();
+  // The semi-implicit step's own matrix; backward Euler's Newton keeps its own.
+  if (options_.integrator == Integrator::SemiImplicit) K_ = disc.assembler().new_matrix();
 }
 
 // Scale of energies a stable run can reach: the initial kinetic and elastic

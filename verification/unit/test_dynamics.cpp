@@ -3,6 +3,7 @@
 // momentum conservation, and instability detection of the explicit schemes.
 #include "assembly/assembler.hpp"
 #include "dynamics/dynamic_elasticity.hpp"
+#include "dynamics/mass_model.hpp"
 #include "material/material.hpp"
 #include "dynamics_checks.hpp"
 #include "mesh/box_mesh.hpp"
@@ -55,6 +56,39 @@ TEST(Mass, ConsistentMassAndItsMatrixFreeAction) {
     FAIL() << "row-sum lumping of Tet10 was accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("non-positive nodal mass"), std::string::npos) << e.what();
+  }
+}
+
+// The nodal mass matrix Ms that dynamics keeps (M = Ms (x) I3 over all nodes)
+// against the DOF matrix assembled by the other path (mass_matrix, entry by
+// entry into the free-DOF pattern), with a third of the nodes constrained:
+// MassModel's free block added into a zero matrix, its products over the free
+// and over all DOFs. Both paths sum the same element masses in another order:
+// 1e-14 relative is ~50 roundings of the largest entry.
+TEST(Mass, NodalMatrixServesEveryConsistentProduct) {
+  const double rho = 3.5;
+  for (const auto& [cell, order] : {std::pair{CellType::Tetrahedron, 2}, std::pair{CellType::Tetrahedron, 3},
+                                    std::pair{CellType::Hexahedron, 2}}) {
+    const Mesh m = box_mesh(BoxSpec{{0, 0, 0}, {2, 1, 1}, {3, 2, 2}}, cell, order);
+    std::vector<int> fixed;
+    for (int v = 0; v < m.num_nodes(); v += 3) fixed.push_back(v);
+    Discretization disc(m, false, {}, -1);
+    disc.constrain(fixed);
+    const MassModel mass(disc, rho, MassKind::Consistent, MassLumping::RowSum, 2 * order, -1, false);
+    const SparseMatrix M = disc.assembler().mass_matrix(rho, 2 * order);
+    const double scale = Eigen::Map<const Eigen::VectorXd>(M.valuePtr(), M.nonZeros()).cwiseAbs().maxCoeff();
+    SparseMatrix K = disc.assembler().new_matrix();
+    mass.add_free_to(K, 2.0);
+    EXPECT_LE((SparseMatrix(K - 2.0 * M)).coeffs().cwiseAbs().maxCoeff(), 1e-14 * scale);
+    Eigen::VectorXd w(M.rows());
+    for (Eigen::Index i = 0; i < w.size(); ++i) w[i] = std::cos(0.41 * i);
+    EXPECT_LE((mass.free_times(w) - M * w).norm(), 1e-14 * (M * w).norm());
+    // All DOFs: against the element-by-element action.
+    Eigen::VectorXd r(3 * m.num_nodes());
+    for (Eigen::Index i = 0; i < r.size(); ++i) r[i] = std::sin(0.29 * i);
+    const Eigen::VectorXd expected = disc.assembler().mass_action(rho, 2 * order, r);
+    EXPECT_LE((mass.consistent_times(r) - expected).norm(), 1e-14 * expected.norm());
+    EXPECT_NEAR(mass.min_diagonal(), M.diagonal().minCoeff(), 1e-14 * scale);
   }
 }
 

@@ -281,9 +281,9 @@ TEST(Scenes, ImplicitAndStaticRunsBuildOnlyWhatTheyNeed) {
   ASSERT_TRUE(r.ok) << r.message;
   EXPECT_EQ(r.stats["built"]["symbolic_analyses"].get<int>(), 1);
   EXPECT_EQ(r.stats["built"]["floor_evaluations"].get<int>(), 0);
-  // Two, once each: over the free DOFs (Newton's matrix) and over all DOFs
-  // (kinetic energy and the coupling to prescribed nodes).
-  EXPECT_EQ(r.stats["built"]["mass_matrices_built"].get<int>(), 2);
+  // One, once: the nodal mass matrix over all nodes serves Newton's matrix, the
+  // kinetic energy and the coupling to prescribed nodes.
+  EXPECT_EQ(r.stats["built"]["mass_matrices_built"].get<int>(), 1);
   EXPECT_EQ(r.stats["built"]["polar_decompositions"].get<long long>(), 0);  // Neo-Hookean needs none
   // Corotated computes one per quadrature point and evaluation.
   Scene c = s;
