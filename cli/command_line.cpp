@@ -101,6 +101,13 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   run->add_flag("--final-frame", ro.final_frame,
                 "With --no-frames: still write the last state as final.vtu (final_surface.vtu when embedded)");
   run->add_option("--vtu-format", ro.vtu_format, vtu_format_help)->check(vtu_formats)->capture_default_str();
+  run->add_option("--checkpoint-every", ro.checkpoint_every,
+                  "Time-stepping runs: a checkpoint in OUT/checkpoint/ every N steps ('25') or seconds ('60s'), "
+                  "written atomically, for --resume");
+  run->add_flag("--resume", ro.resume,
+                "Continue from OUT/checkpoint/ when it holds a checkpoint of this scene (else start from rest); "
+                "checkpoints go on every 60 s unless --checkpoint-every says otherwise");
+  run->add_option("--save-state", ro.save_state, "Time-stepping runs: write the last state reached to this state file");
   run->add_flag("--distributed", ro.distributed,
                 "Partition the elements over the MPI ranks (static and implicit-Euler scenes; mpirun -np K; rank 0 writes)");
 
@@ -108,6 +115,9 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   auto* study = app.add_subcommand("study", "Run a study: a scene's discretisations against a reference, time against error");
   study->add_option("study", so.study, "Study file (JSON; scripts/studies/ has the built-in ones)")->required();
   study->add_option("--out", so.out, "Output directory (default: reports/studies/NAME)");
+  study->add_flag("--resume", so.resume,
+                  "Keep each finished run's record under OUT/runs/NAME and reuse it when the run's scene is unchanged; "
+                  "a run stopped part-way continues from its checkpoint (every 120 s)");
 
   // Input caps (io/input_file.hpp), raised per run; validated in commands.cpp.
   const std::string limit_help = "Raise an input cap: NAME=VALUE, NAME one of mesh-file-mb, scene-file-kb, elements, "

@@ -27,6 +27,8 @@
 #include <nlohmann/json.hpp>
 
 #include <climits>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -387,6 +389,25 @@ int run_scene_file(const RunOptions& o) {
   options.final_frame = o.final_frame;
   options.vtu_format = parse_vtu_format(o.vtu_format);
   options.distributed = o.distributed;
+  if (!o.checkpoint_every.empty() || o.resume) {
+    options.checkpoint_dir = (std::filesystem::path(o.out) / "checkpoint").string();
+    options.resume = o.resume;
+    options.checkpoint_every_seconds = 60.0;
+    if (!o.checkpoint_every.empty()) {
+      const std::string& c = o.checkpoint_every;
+      const bool seconds = c.back() == 's';
+      const std::string number = seconds ? c.substr(0, c.size() - 1) : c;
+      char* end = nullptr;
+      const double v = std::strtod(number.c_str(), &end);
+      if (number.empty() || end != number.c_str() + number.size() || !(v > 0.0) || !std::isfinite(v) ||
+          (!seconds && (v != std::floor(v) || v > 1e9)))
+        throw UsageError(fmt::format("--checkpoint-every '{}': expected a whole number of steps (25) or seconds (60s)", c));
+      options.checkpoint_every_seconds = seconds ? v : 0.0;
+      options.checkpoint_every_steps = seconds ? 0 : static_cast<int>(v);
+    }
+  }
+  options.save_state = o.save_state;
+  options.save_state_key = scene.name;
   if (o.distributed) {
     ensure_hypre();
     int rank = 0;
@@ -414,7 +435,7 @@ int run_study_file(const StudyOptions& o) {
   }
   const std::string out = o.out.empty() ? "reports/studies/" + study.name : o.out;
   try {
-    const nlohmann::json j = run_study(study, out, {.progress = true});
+    const nlohmann::json j = run_study(study, out, {.progress = true, .resume = o.resume});
     fmt::print("study {}: {} runs -> {}/study.json\n", study.name, j["runs"].size(), out);
   } catch (const SceneError& e) {
     fmt::print(stderr, "hofem: error: {}\n", e.what());

@@ -94,6 +94,9 @@ struct RunOptions {
   std::vector<std::string> set;     ///< --set key.path=VALUE: SceneOverrides (scene.hpp), applied before validation
   bool check = false;               ///< --check: validate only (scene_commands.hpp)
   bool print_defaults = false;      ///< --print-defaults: print the default scene and exit
+  std::string checkpoint_every;     ///< --checkpoint-every: "N" steps or "Ns" seconds (OUT/checkpoint/)
+  bool resume = false;              ///< --resume: continue from OUT/checkpoint/ when there is one
+  std::string save_state;           ///< --save-state PATH: the last state as a state file
 };
 /// Exit status 0 when every step succeeded, 1 when a step failed (stats.json
 /// still written), 2 for an invalid scene (the message names the file and key).
@@ -103,6 +106,7 @@ struct StudyOptions {
   std::string study;
   std::string out;                  ///< default: reports/studies/NAME (NAME from the study file)
   std::vector<std::string> limits;  ///< --limit NAME=VALUE
+  bool resume = false;              ///< --resume: reuse finished runs' records, continue stopped runs
 };
 /// Runs a study (core/study/study_file.hpp) and writes study.json and summary.md.
 /// Exit status 0 when the study ran (runs that fail are rows of the table), 2 for

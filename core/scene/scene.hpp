@@ -140,6 +140,9 @@ struct Scene {
   /// The overrides applied to the file's keys, so that an error found later (a
   /// boundary entry selecting no node of the built mesh) names the one it came from.
   SceneOverrides overrides;
+  /// The scene's JSON after the overrides, as validated (keys sorted, compact):
+  /// what its fingerprint (scene_fingerprint.hpp) is taken of.
+  std::string resolved;
 };
 
 /// Parses and validates a scene file; throws SceneError naming the file and key.

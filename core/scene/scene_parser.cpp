@@ -363,6 +363,7 @@ Scene parse_scene(const std::string& text, const std::string& origin, const Scen
   try {
     Scene s = parse_validated(j, origin);
     s.overrides = overrides;
+    s.resolved = j.dump();
     return s;
   } catch (const SceneError& e) {
     throw SceneError(name_override(e.what(), origin, overrides));

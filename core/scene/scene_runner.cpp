@@ -1,5 +1,8 @@
 #include "scene/scene_runner.hpp"
 
+#include "scene/run_checkpoint.hpp"
+#include "scene/scene_fingerprint.hpp"
+
 #include "material/material.hpp"
 #include "io/atomic_file.hpp"
 #include "io/vtu_writer.hpp"
@@ -98,6 +101,14 @@ struct VolumeRatioRecord {
             {"t_of_min_det_F", t_min},
             {"max_inverted_elements", max_inverted},
             {"steps_with_inverted_elements", steps_with_inversion}};
+  }
+  static VolumeRatioRecord from_json(const json& j) {
+    VolumeRatioRecord r;
+    if (j.contains("min_det_F") && j["min_det_F"].is_number()) r.min_det_F = j["min_det_F"].get<double>();
+    r.t_min = j.value("t_of_min_det_F", 0.0);
+    r.max_inverted = j.value("max_inverted_elements", 0);
+    r.steps_with_inversion = j.value("steps_with_inverted_elements", 0);
+    return r;
   }
 };
 void add_volume_ratio(const Eigen::VectorXd& min_det_F, json& row, VolumeRatioRecord& record) {
@@ -261,26 +272,53 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
                 options.vtu_format);
   };
   if (is_explicit(s.dynamics.integrator)) st["stable_dt_estimate"] = sim.estimate_stable_dt();
+  // The initial state, before a stored or checkpointed state replaces it.
+  if (options.observer) {
+    const Eigen::VectorXd u0 = nodal(piece, sim.displacement());
+    if (writer) options.observer(SceneState{mesh, emb, 0, sim.time(), u0});
+  }
   int first = 0;  // the step the run starts after
-  if (options.start) {
-    if (options.start->x.size() != sim.positions().size())
+  json per_step = json::array();
+  VolumeRatioRecord deformation;
+  const std::string key = options.checkpoint_dir.empty() ? std::string() : scene_fingerprint(s);
+  std::optional<RunCheckpoint> resumed;
+  if (options.resume && !options.checkpoint_dir.empty()) {
+    try {
+      resumed = read_checkpoint(options.checkpoint_dir, key);
+    } catch (const std::runtime_error& e) {
+      throw SceneError(e.what());  // an input problem (exit status 2), named by the file
+    }
+  }
+  const StoredState* start = resumed ? &resumed->state : options.start;
+  if (start) {
+    if (start->x.size() != sim.positions().size())
       throw SceneError(fmt::format("{}: the stored state has {} values, this scene's mesh {}", s.file,
-                                   options.start->x.size(), sim.positions().size()));
-    sim.restart(options.start->t, options.start->x, options.start->v);
-    first = options.start->step;
+                                   start->x.size(), sim.positions().size()));
+    sim.restart(start->t, start->x, start->v);
+    first = start->step;
+  }
+  if (resumed) {
+    const json& rec = resumed->record;
+    per_step = rec.value("steps", json::array());
+    for (const json& f : rec.value("frames", json::array())) frames.emplace_back(f.at(0).get<double>(), f.at(1).get<std::string>());
+    deformation = VolumeRatioRecord::from_json(rec.value("deformation", json::object()));
+    st["resumed_from_step"] = first;
+    if (options.on_resume) options.on_resume(rec.value("caller", json(nullptr)), first);
   }
   const int steps = std::max(0, static_cast<int>(std::ceil((s.duration - sim.time()) / s.dynamics.dt - 1e-9)));
   // Mesh, finite-cell rules, mass matrix, ...: everything before the first step.
   const auto t_steps = Clock::now();
   st["setup_seconds"] = std::chrono::duration<double>(t_steps - t_start).count();
-  frame(0);
-  if (options.observer) {
-    const Eigen::VectorXd u0 = nodal(piece, sim.displacement());
-    if (writer) options.observer(SceneState{mesh, emb, 0, sim.time(), u0});
-  }
+  if (!resumed) frame(0);
+  auto last_checkpoint = t_steps;
+  auto checkpoint = [&](int k) {
+    json rec{{"steps", per_step}, {"deformation", deformation.to_json()}, {"frames", json::array()}};
+    for (const auto& [t, file] : frames) rec["frames"].push_back({t, file});
+    if (options.checkpoint_record) rec["caller"] = options.checkpoint_record(options.checkpoint_dir, k);
+    write_checkpoint(options.checkpoint_dir, RunCheckpoint{key, StoredState{key, sim.time(), k, sim.positions(), sim.velocities()}, rec});
+    last_checkpoint = Clock::now();
+  };
   if (progress) progress->stage(fmt::format("{} steps of dt = {:.3g} s", steps, s.dynamics.dt), 0.0);
-  json per_step = json::array();
-  VolumeRatioRecord deformation;
   int done = first;
   for (int k = first + 1; k <= first + steps; ++k) {
     const StepReport r = sim.step();
@@ -302,6 +340,11 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
     per_step.push_back(row);
     done = k;
     if (k % s.output_every == 0 || k == first + steps) frame(k);
+    if (!options.checkpoint_dir.empty() && writer && k < first + steps &&
+        ((options.checkpoint_every_steps > 0 && k % options.checkpoint_every_steps == 0) ||
+         (options.checkpoint_every_seconds > 0.0 &&
+          std::chrono::duration<double>(Clock::now() - last_checkpoint).count() >= options.checkpoint_every_seconds)))
+      checkpoint(k);
     if (progress)
       progress->update(fmt::format("step {}/{}, t = {:.4g}", k, first + steps, sim.time()), double(k - first) / steps);
   }
@@ -366,8 +409,9 @@ SceneRunResult run_scene_in(const Scene& s, const std::string& out_dir, const Sc
                 {"nodes", mesh.num_nodes()}, {"elements", mesh.num_elements()}};
   st["material"] = {{"model", s.material}, {"young", s.young}, {"poisson", s.poisson}, {"density", s.density}};
   if (run.emb) st["embedded"] = run.emb->stats();
-  if ((options.start || !options.save_state.empty()) && (s.is_static || options.distributed))
-    throw SceneError(fmt::format("{}: stored states are for serial time-stepping runs", s.file));
+  if ((options.start || !options.save_state.empty() || !options.checkpoint_dir.empty()) &&
+      (s.is_static || options.distributed))
+    throw SceneError(fmt::format("{}: stored states and checkpoints are for serial time-stepping runs", s.file));
   if (s.is_static)
     run.run_static(std::move(motions));
   else
@@ -393,7 +437,18 @@ SceneRunResult run_scene(const Scene& s, const std::string& out_dir, const Scene
   std::error_code ec;
   if (!out_dir.empty()) std::filesystem::create_directories(out_dir, ec);
   if (ec) throw SceneError(fmt::format("{}: cannot create the output directory '{}': {}", s.file, out_dir, ec.message()));
-  if (files) clear_earlier_output(out_dir);
+  // Resuming keeps the frames written before the checkpoint (later ones are written again).
+  const bool resuming = options.resume && !options.checkpoint_dir.empty() &&
+                        std::filesystem::exists(std::filesystem::path(options.checkpoint_dir) / "checkpoint.json", ec);
+  if (resuming) {
+    // Refused before anything is written: a wrong checkpoint leaves the earlier run's files as they were.
+    try {
+      read_checkpoint(options.checkpoint_dir, scene_fingerprint(s));
+    } catch (const std::runtime_error& e) {
+      throw SceneError(e.what());
+    }
+  }
+  if (files && !resuming) clear_earlier_output(out_dir);
   try {
     return run_scene_in(s, out_dir, options, writer, t_start);
   } catch (const std::exception& e) {

@@ -67,6 +67,22 @@ struct SceneRunOptions {
   /// state file, io/state_file.hpp) under this key.
   std::string save_state;
   std::string save_state_key;
+  /// Time-stepping scenes, serial: a checkpoint (scene/run_checkpoint.hpp) in
+  /// this directory after every checkpoint_every_steps-th step and whenever
+  /// checkpoint_every_seconds of stepping passed since the last one (either 0:
+  /// that trigger off); empty: no checkpoints.
+  std::string checkpoint_dir;
+  int checkpoint_every_steps = 0;
+  double checkpoint_every_seconds = 0.0;
+  /// Continue from checkpoint_dir's checkpoint when there is one (it must be of
+  /// this scene): the earlier frames and per-step rows stay, the steps after it
+  /// are run. Without a checkpoint the run starts from rest.
+  bool resume = false;
+  /// With checkpoints: called before each is committed, with its directory and
+  /// step; what it returns is kept in the checkpoint and handed to on_resume
+  /// when a run continues from it (a study's recorded states).
+  std::function<nlohmann::json(const std::string& dir, int step)> checkpoint_record;
+  std::function<void(const nlohmann::json& record, int step)> on_resume;
 };
 
 struct SceneRunResult {

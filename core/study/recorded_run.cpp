@@ -3,13 +3,97 @@
 #include "scene/scene_embedding.hpp"
 #include "scene/scene_runner.hpp"
 
+#include "io/atomic_file.hpp"
+#include "scene/scene_fingerprint.hpp"
+#include "scene/scene_mesh.hpp"
+
+#include <fmt/format.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <optional>
+#include <sstream>
 
 namespace hofem {
 
-RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times) {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// Long study runs checkpoint this often (a few seconds of writing per hour).
+constexpr double kCheckpointSeconds = 120.0;
+
+std::string record_key(const Scene& scene, const std::vector<double>& frame_times) {
+  return scene_fingerprint(scene) + ":" + json(frame_times).dump();
+}
+
+// The recorded states as state files in dir (x: the displacement; v: unused, zero),
+// named by time index and step so that a file once written never changes.
+json write_recorded(const std::string& dir, const RecordedRun& run, const std::vector<int>& steps) {
+  json files = json::array();
+  for (size_t f = 0; f < run.states.size(); ++f) {
+    if (run.states[f].size() == 0) {
+      files.push_back(nullptr);
+      continue;
+    }
+    const std::string name = fmt::format("recorded-{}-{}.state", f, steps[f]);
+    if (!fs::exists(fs::path(dir) / name))
+      write_state((fs::path(dir) / name).string(),
+                  StoredState{"recorded", run.times[f], steps[f], run.states[f], Eigen::VectorXd::Zero(run.states[f].size())});
+    files.push_back({{"file", name}, {"t", run.times[f]}, {"step", steps[f]}});
+  }
+  return files;
+}
+
+void read_recorded(const std::string& dir, const json& files, RecordedRun& run, std::vector<int>& steps, int up_to_step) {
+  for (size_t f = 0; f < files.size() && f < run.states.size(); ++f) {
+    if (files[f].is_null() || files[f]["step"].get<int>() > up_to_step) continue;
+    const StoredState s = read_state((fs::path(dir) / files[f]["file"].get<std::string>()).string());
+    run.times[f] = s.t;
+    run.states[f] = s.x;
+    steps[f] = s.step;
+  }
+}
+
+// A stored finished run: its states, and the mesh and embedding built again from the scene.
+std::optional<RecordedRun> stored_run(const Scene& scene, const std::string& dir, const std::string& key, size_t n) {
+  std::ifstream in(fs::path(dir) / "record.json");
+  if (!in) return std::nullopt;
+  std::stringstream text;
+  text << in.rdbuf();
+  json j = json::parse(text.str(), nullptr, false);
+  if (j.is_discarded() || !j.is_object() || j.value("key", "") != key) return std::nullopt;
   RecordedRun run;
+  run.times.assign(n, std::numeric_limits<double>::quiet_NaN());
+  run.states.resize(n);
+  std::vector<int> steps(n, 0);
+  read_recorded(dir, j.at("files"), run, steps, std::numeric_limits<int>::max());
+  run.mesh = build_scene_mesh(scene);
+  if (scene.embedded) {
+    const SceneEmbedding emb(scene, run.mesh);
+    run.embedded_surface = emb.surface();
+    run.active = emb.active_cells();
+    run.own_rules = emb.element_rules().mass;
+  }
+  run.stats = j.at("stats");
+  run.ok = j.at("ok").get<bool>();
+  run.message = j.at("message").get<std::string>();
+  run.stored = true;
+  return run;
+}
+
+}  // namespace
+
+RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times,
+                       bool resumable) {
+  const std::string key = resumable && !out_dir.empty() ? record_key(scene, frame_times) : std::string();
+  if (!key.empty())
+    if (std::optional<RecordedRun> stored = stored_run(scene, out_dir, key, 1 + frame_times.size())) return *stored;
+  RecordedRun run;
+  std::vector<int> steps(1 + frame_times.size(), 0);
   // Per requested time: the recorded state's distance in time (the nearest step wins).
   std::vector<double> gap(frame_times.size(), std::numeric_limits<double>::infinity());
   run.times.assign(1 + frame_times.size(), std::numeric_limits<double>::quiet_NaN());
@@ -33,9 +117,23 @@ RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std
         gap[f] = std::abs(s.t - frame_times[f]);
         run.times[f + 1] = s.t;
         run.states[f + 1] = s.u;
+        steps[f + 1] = s.step;
       }
     }
   };
+  // Static scenes have no steps to checkpoint; they are stored when finished.
+  if (!key.empty() && !scene.is_static) {
+    options.checkpoint_dir = (fs::path(out_dir) / "checkpoint").string();
+    options.checkpoint_every_seconds = kCheckpointSeconds;
+    options.resume = true;
+    options.checkpoint_record = [&](const std::string& dir, int) { return write_recorded(dir, run, steps); };
+    options.on_resume = [&](const json& files, int step) {
+      if (!files.is_array()) return;
+      read_recorded(options.checkpoint_dir, files, run, steps, step);
+      for (size_t f = 0; f < frame_times.size(); ++f)
+        if (run.states[f + 1].size() > 0) gap[f] = std::abs(run.times[f + 1] - frame_times[f]);
+    };
+  }
   try {
     const SceneRunResult r = run_scene(scene, out_dir, options);
     run.ok = r.ok;
@@ -44,6 +142,16 @@ RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std
   } catch (const std::exception& e) {
     run.ok = false;
     run.message = e.what();
+  }
+  if (!key.empty() && run.ok) {
+    // The finished run's record: its states first, then record.json naming them.
+    const json files = write_recorded(out_dir, run, steps);
+    write_file_atomically((fs::path(out_dir) / "record.json").string(),
+                          json{{"key", key}, {"files", files}, {"stats", run.stats}, {"ok", run.ok}, {"message", run.message}}
+                                  .dump() +
+                              "\n");
+    std::error_code ec;
+    fs::remove_all(fs::path(out_dir) / "checkpoint", ec);
   }
   return run;
 }

@@ -30,6 +30,8 @@ struct RecordedRun {
   nlohmann::json stats = nlohmann::json::object();
   bool ok = false;
   std::string message;
+  /// Taken from a stored record of an earlier run of the same scene (resumable).
+  bool stored = false;
 };
 
 /// Runs the scene without frames into `out_dir` (stats.json only; empty: no
@@ -37,6 +39,15 @@ struct RecordedRun {
 /// its state at t = 0 and at each time in `frame_times` (ascending; at most the
 /// scene's duration; a static scene's solution is at t = 1). A run that fails is returned with ok = false, its message
 /// and what it recorded.
-RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times);
+RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times,
+                       bool resumable = false);
+// resumable (needs out_dir): the finished run's record is stored in out_dir
+// (record.json and a state file per recorded time, keyed by the scene's
+// fingerprint and the times) and returned again without running when asked for
+// the same scene and times; a run that stops part-way continues from its last
+// checkpoint (out_dir/checkpoint, every kCheckpointSeconds) with what it had
+// recorded. Stored results do not know which code made them beyond their
+// provenance: a study asked to resume after a change of the code reuses them
+// (the study's rows say which runs were stored).
 
 }  // namespace hofem

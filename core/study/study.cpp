@@ -172,6 +172,7 @@ json describe(const StudyRun& r, const RecordedRun& run) {
   row["embedded"] = r.scene.embedded.has_value();
   row["ok"] = run.ok;
   row["message"] = run.message;
+  row["stored"] = run.stored;  // taken from an earlier run's record (StudyRunOptions::resume)
   return row;
 }
 
@@ -200,7 +201,9 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
   auto record = [&](const StudyRun& r) {
     if (progress) progress->stage(fmt::format("running {} ({})", r.name, r.family), started / total_runs);
     ++started;
-    return record_run(r.scene, (out / "runs" / r.name).string(), s.frames);
+    RecordedRun run = record_run(r.scene, (out / "runs" / r.name).string(), s.frames, options.resume);
+    if (run.stored) say(fmt::format("{}: stored result of an earlier run (same scene)", r.name));
+    return run;
   };
   // 1. The reference, its measuring data and floor, and its own error from the coarser level.
   const RecordedRun reference = record(s.reference);

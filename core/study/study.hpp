@@ -25,6 +25,10 @@ namespace hofem {
 
 struct StudyRunOptions {
   bool progress = false;  ///< one line per run on stderr
+  /// Keep each finished run's record under out_dir/runs/NAME and take it
+  /// instead of running again when the run's scene is unchanged; a run stopped
+  /// part-way continues from its checkpoint (study/recorded_run.hpp).
+  bool resume = false;
 };
 
 /// Runs the study and writes its files into out_dir; returns study.json's content.
