@@ -6,6 +6,8 @@ returns rows; paper_claims.py says what a row holds."""
 import math
 import re
 
+from claims_check import check
+
 def drop_integrator_rows(R):
     """Thesis §5.3.1, Figs. 10-11: the drop at one dt = 1e-3 for explicit,
     semi-implicit and implicit Euler (27 vertices, 48 tets here; the thesis: 20
@@ -23,31 +25,34 @@ def drop_integrator_rows(R):
         match = re.search(r"t = ([0-9.eE+-]+)", ex["message"])
         fails_at, grows = (float(match.group(1)) if match else math.nan), True
     ratio = semi["metric"] / imp["metric"]
+    # The row's value: the failure time when the deviation grows after contact
+    # and both implicit runs complete; else NaN (judged "no").
+    onset = fails_at if (grows and semi["ok"] and imp["ok"]) else math.nan
     return [
         {"id": "thesis.drop.explicit_unstable_after_contact", "source": src,
          "quantity": "explicit Euler at dt = 1e-3: the time it fails by energy growth (inf: it does not)",
-         "paper_value": "deviates after contact, ever more (instability)", "measured": fails_at, "unit": "s",
+         "paper_value": "deviates after contact, ever more (instability)", "measured": onset, "unit": "s",
          "criterion": f"fails after the contact (t > {contact:.2f} s) or its deviation from the reference grows from "
                       "frame to frame after it; the implicit runs complete",
-         "agrees": bool(fails_at > contact and grows and semi["ok"] and imp["ok"]), "size": "main-job",
+         "check": check(low=contact, low_open=True), "size": "main-job",
          "note": ex["message"] if not ex["ok"] else "completed"},
         {"id": "thesis.drop.semi_implicit_follows_implicit", "source": src,
          "quantity": "semi-implicit's deviation from the reference / implicit Euler's (surface RMS, max over frames)",
          "paper_value": "consistent trend, acceptable error", "measured": ratio, "unit": "ratio",
-         "criterion": "within [0.5, 2]", "agrees": bool(0.5 <= ratio <= 2), "size": "main-job",
+         "criterion": "within [0.5, 2]", "check": check(0.5, 2.0), "size": "main-job",
          "note": f"semi-implicit {semi['metric']:.3g}, implicit {imp['metric']:.3g} m: both first order, both damp "
                  "the bounce at this dt."},
         {"id": "thesis.drop.explicit_faster_than_semi_implicit", "source": src,
          "quantity": "time per step, semi-implicit / explicit Euler", "paper_value": round(120 / 45, 3),
          "measured": semi["time_per_step_median"] / ex["time_per_step_median"], "unit": "ratio",
          "criterion": "> 1 (the thesis: 120 against 45 frames per second)",
-         "agrees": bool(semi["time_per_step_median"] > ex["time_per_step_median"]), "size": "main-job",
+         "check": check(low=1.0, low_open=True), "size": "main-job",
          "note": f"{ex['time_per_step_median'] * 1e3:.3g} ms against {semi['time_per_step_median'] * 1e3:.3g} ms."},
         {"id": "thesis.drop.semi_implicit_faster_than_implicit", "source": src,
          "quantity": "time per step, implicit / semi-implicit Euler", "paper_value": round(45 / 5, 3),
          "measured": imp["time_per_step_median"] / semi["time_per_step_median"], "unit": "ratio",
          "criterion": "> 1 (the thesis: 45 against 5 frames per second)",
-         "agrees": bool(imp["time_per_step_median"] > semi["time_per_step_median"]), "size": "main-job",
+         "check": check(low=1.0, low_open=True), "size": "main-job",
          "note": f"{semi['time_per_step_median'] * 1e3:.3g} ms against {imp['time_per_step_median'] * 1e3:.3g} ms. "
                  "hofem's semi-implicit step projects every quadrature point's stress derivative to positive "
                  "semi-definite (a 9 x 9 eigendecomposition, ~25 % of its profile) where implicit Euler's Newton "
@@ -59,7 +64,10 @@ def compression_rows(R):
     """Thesis §5.2, Fig. 9: the cantilever (2 x 0.5 x 0.5 m, E = 1e5, nu = 0.3,
     clamped at x = 0) bending under its own weight for 3 s: the root's lower
     side is compressed hardest. Verdicts from the scenes' min det F over every
-    step's quadrature points and the count of elements with det F <= 0."""
+    step's quadrature points and the count of elements with det F <= 0. The
+    thesis' third claim, "Neo-Hookean neither inverts nor folds", has no row:
+    hofem's Neo-Hookean energy is +inf at J <= 0, so Newton's line search can
+    never accept an inverted state and the row could not fail."""
     src = "thesis §5.2, Fig. 9"
     d = {m: R["scene_stats"](f"cantilever-{m}")["deformation"] for m in ("stvk", "corotated", "neohookean")}
     note = lambda m: (f"{m}: min det F {d[m]['min_det_F']:.3g} at t = {d[m]['t_of_min_det_F']:.3g} s, up to "
@@ -68,18 +76,15 @@ def compression_rows(R):
         {"id": "thesis.fig9.stvk_inverts", "source": src, "quantity": "StVK: min det F over the run",
          "paper_value": "inverts ('local entanglement and inversion near the connection')",
          "measured": d["stvk"]["min_det_F"], "unit": "det F", "criterion": "<= 0",
-         "agrees": d["stvk"]["min_det_F"] <= 0, "size": "main-job", "note": note("stvk")},
+         "check": check(high=0.0), "size": "main-job", "note": note("stvk")},
         {"id": "thesis.fig9.corotated_folds_slightly", "source": src,
          "quantity": "corotated: most elements inverted at once, against StVK's",
-         "paper_value": "folds slightly", "measured": d["corotated"]["max_inverted_elements"], "unit": "elements",
-         "criterion": "more than 0 and fewer than StVK's",
-         "agrees": 0 < d["corotated"]["max_inverted_elements"] < d["stvk"]["max_inverted_elements"],
+         "paper_value": "folds slightly",
+         "measured": d["corotated"]["max_inverted_elements"] / max(d["stvk"]["max_inverted_elements"], 1e-300),
+         "unit": "ratio of inverted elements, corotated / StVK",
+         "criterion": "in (0, 1): some inverted, fewer than StVK's",
+         "check": check(0.0, 1.0, low_open=True, high_open=True),
          "size": "main-job", "note": note("corotated") + " " + note("stvk")},
-        {"id": "thesis.fig9.neohookean_resists", "source": src, "quantity": "Neo-Hookean: min det F over the run",
-         "paper_value": "neither inverts nor folds (the log J term)", "measured": d["neohookean"]["min_det_F"],
-         "unit": "det F", "criterion": "> 0 and no inverted element in any step",
-         "agrees": d["neohookean"]["min_det_F"] > 0 and d["neohookean"]["max_inverted_elements"] == 0,
-         "size": "main-job", "note": note("neohookean")},
     ]
 
 
@@ -94,8 +99,14 @@ def krylov_rows(R):
     e = lambda n: runs[n]["metric"]
     src12, src13 = "thesis §5.3.2, Fig. 12", "thesis §5.3.2, Fig. 13"
     threshold = 1e-3
-    cheapest = min((r for r in st["runs"] if r["ok"] and r["metric"] <= threshold),
-                   key=lambda r: r["time_per_step_median"], default=None)
+    under = [r for r in st["runs"] if r["ok"] and r["metric"] <= threshold]
+    cheapest = min(under, key=lambda r: r["time_per_step_median"], default=None)
+    # The cheapest Jacobi run against the cheapest other one, both under the
+    # threshold: Jacobi must win by 10 %, more than the ~5 % scatter of a median
+    # of repeats on this machine, so that timing noise cannot decide the row.
+    best = lambda pick: min((r["time_per_step_median"] for r in under if pick(r)), default=math.inf)
+    jacobi, other = best(lambda r: r["family"].endswith("+jacobi")), best(lambda r: not r["family"].endswith("+jacobi"))
+    margin = other / jacobi if math.isfinite(jacobi) else math.nan
 
     def error_ratio(cid, src, quantity, paper_value, a, b, low, high, note=""):
         """A row judging the trajectory-error ratio of runs a / b against [low, high]."""
@@ -104,7 +115,8 @@ def krylov_rows(R):
                      f">= {low:g}" if low > 0 else f"< {high:g}")
         return {"id": cid, "source": src, "quantity": f"trajectory error, {quantity}", "paper_value": paper_value,
                 "measured": m, "unit": "ratio", "criterion": criterion,
-                "agrees": low <= m < high if high < math.inf else m >= low, "size": "main-job",
+                "check": check(low if low > 0 else None, high if high < math.inf else None, high_open=True),
+                "size": "main-job",
                 "note": f"{a} {e(a):.3g} m against {b} {e(b):.3g} m. {note}".strip()}
 
     spd = ("Our systems are SPD (the semi-implicit step projects each point's stress derivative), and there CG "
@@ -127,10 +139,10 @@ def krylov_rows(R):
                     "< 1 ('the conjugate residual is generally better')", "cr-jacobi-12", "cg-jacobi-12", 0.0, 1.0,
                     spd),
         {"id": "thesis.fig13.jacobi_best_in_time", "source": src13,
-         "quantity": f"preconditioner of the cheapest run (time per step) under trajectory error {threshold:g} m",
-         "paper_value": "jacobi", "measured": cheapest["family"] if cheapest else None, "unit": "solver",
-         "criterion": "a Jacobi-preconditioned run is the cheapest under the threshold",
-         "agrees": bool(cheapest) and cheapest["family"].endswith("+jacobi"), "size": "main-job",
+         "quantity": f"time per step under trajectory error {threshold:g} m, cheapest other run / cheapest Jacobi run",
+         "paper_value": "> 1 (Jacobi is the cheapest)", "measured": margin, "unit": "ratio",
+         "criterion": ">= 1.1: Jacobi wins by more than the timing scatter",
+         "check": check(low=1.1), "size": "main-job",
          "note": (f"{cheapest['name']}: {cheapest['time_per_step_median'] * 1e3:.3g} ms per step, error "
                   f"{cheapest['metric']:.3g} m; AMG x3 {runs['cg-amg-3']['time_per_step_median'] * 1e3:.3g} ms, error "
                   f"{e('cg-amg-3'):.3g} m. Assembly dominates a step at 1,029 unknowns, so iterations cost little."
@@ -150,13 +162,13 @@ def order_rows(R):
         {"id": "thesis.fig14.p2_more_accurate", "source": src,
          "quantity": "trajectory error on the same 4^3 mesh, P1 / P2", "paper_value": "> 1 (P2 more accurate)",
          "measured": p1["metric"] / p2["metric"], "unit": "ratio", "criterion": "> 1",
-         "agrees": p1["metric"] > p2["metric"], "size": "main-job",
+         "check": check(low=1.0, low_open=True), "size": "main-job",
          "note": f"P1 {p1['metric']:.3g} m ({p1['unknowns']} unknowns), P2 {p2['metric']:.3g} m ({p2['unknowns']}); "
                  f"at equal unknowns (375) P1 {runs['p1-4']['metric']:.3g} m, P2 on 2^3 {runs['p2-2']['metric']:.3g} m."},
         {"id": "thesis.fig14.p2_costlier_per_step", "source": src,
          "quantity": "time per step on the same 4^3 mesh, P2 / P1", "paper_value": "> 1 ('the cost becomes very huge')",
          "measured": p2["time_per_step_median"] / p1["time_per_step_median"], "unit": "ratio", "criterion": "> 1",
-         "agrees": p2["time_per_step_median"] > p1["time_per_step_median"], "size": "main-job",
+         "check": check(low=1.0, low_open=True), "size": "main-job",
          "note": f"{p2['time_per_step_median'] * 1e3:.3g} ms against {p1['time_per_step_median'] * 1e3:.3g} ms; at equal "
                  f"unknowns P2 {runs['p2-2']['time_per_step_median'] * 1e3:.3g} ms, P1 "
                  f"{runs['p1-4']['time_per_step_median'] * 1e3:.3g} ms."},

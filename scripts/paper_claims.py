@@ -3,7 +3,11 @@
 (studies, verification.json) and writes reports/paper_claims.json and
 reports/paper_claims.md. Each row: id, source (document, section, table or
 figure), quantity, paper_value, measured, unit, criterion (written here, before
-any measurement it judges), agrees, size (main-job or full), note.
+any measurement it judges) in words and as `check`, the interval of agreeing
+values (claims_check.py), agrees (computed from check here, in one place), size
+(main-job or full), note. Rows a builder cannot judge (a family that never
+crosses the threshold) are listed as skipped with the reason; checks of a study's
+own reference are kept apart from the claims ("reference_checks").
 
 Sources: Longva et al. 2020, "Higher-order finite elements for embedded
 simulation" (Table 1, §6.2-6.5, Fig. 10: scripts/claims_longva.py), and the
@@ -24,6 +28,7 @@ import sys
 
 from claims_longva import (fig10_rows, hollow_ball_rows, simplification_rows, slingshot_rows,
                            twisting_cylinder_rows)
+from claims_check import judge
 from claims_thesis import compression_rows, drop_integrator_rows, krylov_rows, order_rows
 
 
@@ -51,7 +56,13 @@ def load(reports, studies_dir="studies"):
     return {"verification": rows, "studies": studies, "run_stats": run_stats, "scene_stats": scene_stats}
 
 
-def markdown(rows, skipped=()):
+def interval(c):
+    low = "" if c["low"] is None else f"{c['low']:.4g} {'<' if c['low_open'] else '<='} "
+    high = "" if c["high"] is None else f" {'<' if c['high_open'] else '<='} {c['high']:.4g}"
+    return f"{low}x{high}"
+
+
+def markdown(rows, skipped=(), reference_checks=()):
     lines = ["# The seeds' numbers beside hofem's", "",
              "Written by `scripts/paper_claims.py` from the reports (the size of each row's study is in "
              "paper_claims.json); the criterion of each row was written "
@@ -60,9 +71,13 @@ def markdown(rows, skipped=()):
     for r in rows:
         fmt = lambda x: "—" if x is None else (f"{x:.4g}" if isinstance(x, float) else str(x))
         lines.append(f"| {r['id']} | {r['source']} | {r['quantity']} | {fmt(r['paper_value'])} | {fmt(r['measured'])} "
-                     f"| {r['criterion']} | {'yes' if r['agrees'] else '**no**'} | {r['note']} |")
+                     f"| {r['criterion']} (`{interval(r['check'])}`) | {'yes' if r['agrees'] else '**no**'} | {r['note']} |")
+    if reference_checks:
+        lines += ["", "Checks of the studies' own references (not claims of the seeds):", ""]
+        lines += [f"- {r['id']}: {r['quantity']} = {fmt(r['measured'])}, `{interval(r['check'])}`: "
+                  f"{'holds' if r['agrees'] else '**fails**'}. {r['note']}" for r in reference_checks]
     if skipped:
-        lines += ["", "Not run at this size (scripts/studies-full NAME runs one):", ""] + [f"- {s}" for s in skipped]
+        lines += ["", "Not judged (a study not run at this size, or a row hofem can only bound):", ""] + [f"- {s}" for s in skipped]
     return "\n".join(lines) + "\n"
 
 
@@ -91,7 +106,8 @@ def build_rows(R, full):
         for r in built:
             r["size"] = "full"
         rows += built
-    return rows, skipped
+    skipped += [r["skipped"] for r in rows if "skipped" in r]
+    return [r for r in rows if "skipped" not in r], skipped
 
 
 def main(argv):
@@ -107,16 +123,18 @@ def main(argv):
         print(f"paper_claims: cannot build the table from {reports}: {type(e).__name__}: {e}", file=sys.stderr)
         return 1
     for r in rows:
-        r["agrees"] = bool(r["agrees"])
+        r["agrees"] = judge(r["measured"], r["check"])
         if isinstance(r["measured"], float) and not math.isfinite(r["measured"]):
             r["note"] = f"measured {r['measured']}; " + r["note"]
             r["measured"] = None  # JSON has no infinity
+    reference_checks = [r for r in rows if r.pop("reference_check", False)]
+    rows = [r for r in rows if r not in reference_checks]
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, "paper_claims.json"), "w") as f:
-        json.dump({"rows": rows, "skipped": skipped}, f, indent=1)
+        json.dump({"rows": rows, "reference_checks": reference_checks, "skipped": skipped}, f, indent=1)
         f.write("\n")
     with open(os.path.join(out, "paper_claims.md"), "w") as f:
-        f.write(markdown(rows, skipped))
+        f.write(markdown(rows, skipped, reference_checks))
     print(f"paper_claims: {sum(r['agrees'] for r in rows)} of {len(rows)} rows agree -> {out}/paper_claims.md")
     return 0
 
