@@ -2,7 +2,9 @@
 """Every row of a claims table (paper_claims.json) can fail: its criterion is an
 interval with a finite end, its verdict is the interval's verdict on its
 measured value, and the value pushed past an end (claims_check.outside) is
-judged "no". Also the reference checks. Exit 0 when all hold, 1 otherwise with
+judged "no". Also the reference checks. And each row says how large its runs
+were against the seed's (claims_size.py), and its timings are medians of at
+least 3 steps. Exit 0 when all hold, 1 otherwise with
 each offending row named.
 
 Usage: check_claims_can_fail.py PAPER_CLAIMS_JSON [--min-rows N]"""
@@ -28,6 +30,14 @@ def problems(table):
             out.append(f"{r['id']}: agrees = {r['agrees']} but the interval says {judge(measured, c)}")
         if judge(outside(c), c):
             out.append(f"{r['id']}: a value past the interval's end ({outside(c)}) is still judged 'yes'")
+        size = r.get("size")
+        if not size or "fraction" not in size or "run" not in size:
+            out.append(f"{r['id']}: no size (its fraction of the seed's unknowns and the job that ran it)")
+        elif size["fraction"] is not None and size["at_seed_size"] != (size["fraction"] >= 0.5):
+            out.append(f"{r['id']}: at_seed_size = {size['at_seed_size']} but the fraction is {size['fraction']}")
+        few = [t["run"] for t in r.get("timings", []) if t["steps"] < 3]
+        if few:
+            out.append(f"{r['id']}: timed by a median of fewer than 3 steps in {', '.join(few)}")
     return out
 
 

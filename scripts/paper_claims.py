@@ -5,7 +5,9 @@ reports/paper_claims.md. Each row: id, source (document, section, table or
 figure), quantity, paper_value, measured, unit, criterion (written here, before
 any measurement it judges) in words and as `check`, the interval of agreeing
 values (claims_check.py), agrees (computed from check here, in one place), size
-(main-job or full), note. Rows a builder cannot judge (a family that never
+(the runs it reads against the seed's, their smallest fraction of the seed's
+unknowns or elements, whether that is the seed's size, and which job ran it:
+claims_size.py), note. Rows a builder cannot judge (a family that never
 crosses the threshold) are listed as skipped with the reason; checks of a study's
 own reference are kept apart from the claims ("reference_checks").
 
@@ -29,6 +31,7 @@ import sys
 from claims_longva import (fig10_rows, hollow_ball_rows, simplification_rows, slingshot_rows, table1_seed_rows,
                            twisting_cylinder_rows)
 from claims_check import judge
+from claims_size import describe, describe_timings
 from claims_thesis import compression_rows, drop_integrator_rows, krylov_rows, order_rows
 
 
@@ -62,16 +65,24 @@ def interval(c):
     return f"{low}x{high}"
 
 
+def timings(r):
+    """The row's timings for its note: median per step, quartiles, steps."""
+    return f" Timings: {describe_timings(r['timings'])}." if r.get("timings") else ""
+
+
 def markdown(rows, skipped=(), reference_checks=()):
     lines = ["# The seeds' numbers beside hofem's", "",
-             "Written by `scripts/paper_claims.py` from the reports (the size of each row's study is in "
+             "Written by `scripts/paper_claims.py` from the reports (size: the smallest fraction of the seed's "
+             "unknowns or elements among the runs a row reads, \"seed's size\" at >= 0.5; the parts are in "
              "paper_claims.json); the criterion of each row was written "
              "before the measurement it judges. " + f"{sum(r['agrees'] for r in rows)} of {len(rows)} rows agree.", "",
-             "| id | source | quantity | paper | hofem | criterion | agrees | note |", "|---|---|---|---:|---:|---|---|---|"]
+             "| id | source | quantity | paper | hofem | criterion | agrees | size | note |",
+             "|---|---|---|---:|---:|---|---|---|---|"]
     for r in rows:
         fmt = lambda x: "—" if x is None else (f"{x:.4g}" if isinstance(x, float) else str(x))
         lines.append(f"| {r['id']} | {r['source']} | {r['quantity']} | {fmt(r['paper_value'])} | {fmt(r['measured'])} "
-                     f"| {r['criterion']} (`{interval(r['check'])}`) | {'yes' if r['agrees'] else '**no**'} | {r['note']} |")
+                     f"| {r['criterion']} (`{interval(r['check'])}`) | {'yes' if r['agrees'] else '**no**'} | {describe(r['size'])} "
+                     f"| {r['note']}{timings(r)} |")
     if reference_checks:
         lines += ["", "Checks of the studies' own references (not claims of the seeds):", ""]
         lines += [f"- {r['id']}: {r['quantity']} = {fmt(r['measured'])}, `{interval(r['check'])}`: "
@@ -104,10 +115,11 @@ def build_rows(R, full):
         except (OSError, KeyError) as e:
             skipped.append(f"{group.__name__} ({study}): {type(e).__name__}: {e}")
             continue
-        for r in built:
-            r["size"] = "full"
         rows += built
     skipped += [r["skipped"] for r in rows if "skipped" in r]
+    for r in rows:
+        if "size" in r:
+            r["size"]["run"] = "full" if full else "main-job"
     return [r for r in rows if "skipped" not in r], skipped
 
 

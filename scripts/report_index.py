@@ -26,6 +26,7 @@ import time
 import urllib.parse
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from claims_size import describe as describe_size  # noqa: E402
 from report_headlines import fastest_solver_rows, floor_rows, scene_rows, time_to_error_rows  # noqa: E402
 from report_html import InputError, esc, load_json, markdown, missing, num, table  # noqa: E402
 
@@ -182,7 +183,8 @@ def claims_section(reports, shown, errors):
            + (f"; the full-size studies' rows: {link_if_present(reports, 'full/paper_claims.md')}" if full else "")
            + ".</p>"]
     cells = [(esc(r["id"]), esc(r["source"]), esc(r["quantity"]), num(r["paper_value"]), num(r["measured"]),
-              esc(r["unit"]), esc(r["criterion"]), esc("yes" if r["agrees"] else "no"), esc(r["note"])) for r in rows]
+              esc(r["unit"]), esc(r["criterion"]), esc("yes" if r["agrees"] else "no"),
+              esc(r["note"] + (f" Size: {describe_size(r['size'])}." if r.get("size") else ""))) for r in rows]
     out.append('<div class="wide">' + table(("id", "source", "quantity", "paper", "hofem", "unit", "criterion",
                                              "agrees", "note"), cells, numeric={3, 4}, cls="claims",
                                             row_classes=[None if r["agrees"] else "fail" for r in rows]) + "</div>")
