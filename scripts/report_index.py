@@ -170,6 +170,14 @@ def group_tables(groups, check_cells):
     return out
 
 
+def size_note(size):
+    """A claims row's size for its note (claims_size.py; a table written before
+    sizes were recorded says only which job ran it)."""
+    if isinstance(size, dict):
+        return f" Size: {describe_size(size)}."
+    return f" Size: {size}." if size else ""
+
+
 def claims_section(reports, shown, errors):
     claims = load_json(reports, "paper_claims.json")
     if claims is None:
@@ -184,7 +192,7 @@ def claims_section(reports, shown, errors):
            + ".</p>"]
     cells = [(esc(r["id"]), esc(r["source"]), esc(r["quantity"]), num(r["paper_value"]), num(r["measured"]),
               esc(r["unit"]), esc(r["criterion"]), esc("yes" if r["agrees"] else "no"),
-              esc(r["note"] + (f" Size: {describe_size(r['size'])}." if r.get("size") else ""))) for r in rows]
+              esc(r["note"] + size_note(r.get("size")))) for r in rows]
     out.append('<div class="wide">' + table(("id", "source", "quantity", "paper", "hofem", "unit", "criterion",
                                              "agrees", "note"), cells, numeric={3, 4}, cls="claims",
                                             row_classes=[None if r["agrees"] else "fail" for r in rows]) + "</div>")

@@ -41,7 +41,8 @@
 //   "embedded": {"file": "../meshes/ball.msh"}                            (optional, below)
 //            or {"tube": {"r_in": .., "r_out": .., "height": .., "cells": [..]}}
 //            or {"box": {"min": [..], "max": [..], "cells": [..]}},
-//               with optional "drop_fraction": 1e-4, "stabilisation": 1e-6, "simplify": true
+//               with optional "drop_fraction": 1e-4, "stabilisation": 1e-6, "simplify": true,
+//               "stiffness_degree": N
 // }
 //
 // Embedded scenes (finite cell method, Longva et al. 2020 §3.2, §5.3): "embedded" gives
@@ -105,6 +106,9 @@ struct SceneEmbedded {
   double drop_fraction = 1e-4;
   double stabilisation = 1e-6;
   bool simplify = true;
+  /// Degree the cut cells' stiffness rules integrate exactly; < 0: the
+  /// finite-cell default (FiniteCellOptions::stiffness_degree).
+  int stiffness_degree = -1;
 };
 
 /// Overrides of a scene's keys, "key.path=VALUE" ("mesh.order=2",

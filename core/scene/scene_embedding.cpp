@@ -37,6 +37,7 @@ SceneEmbedding::SceneEmbedding(const Scene& s, const Mesh& background) : backgro
 
   FiniteCellOptions fc;
   fc.simplify = options.simplify;
+  fc.stiffness_degree = options.stiffness_degree;
   // Moment-fitted mass rules (finite_cell_quadrature.hpp): the same mass matrix
   // to rounding, ~165 instead of ~3,900 tabulated points per cut Hex20 cell.
   fc.fit_mass = true;

@@ -105,12 +105,13 @@ void parse_mesh(const Field& m, Scene& s) {
 
 // "embedded": the geometry (Tet4 generators or a .msh of tets) and the finite-cell settings.
 void parse_embedded(const Field& e, const Field& mesh, Scene& s) {
-  e.keys({"box", "tube", "torus", "file", "drop_fraction", "stabilisation", "simplify"});
+  e.keys({"box", "tube", "torus", "file", "drop_fraction", "stabilisation", "simplify", "stiffness_degree"});
   SceneEmbedded emb;
   parse_shape(e, emb.shape, s.file);
   if (e.has("drop_fraction")) emb.drop_fraction = e.at("drop_fraction").number(0.0, 1.0, false, true);
   if (e.has("stabilisation")) emb.stabilisation = e.at("stabilisation").number(0.0, 1.0);
   if (e.has("simplify")) emb.simplify = e.at("simplify").boolean();
+  if (e.has("stiffness_degree")) emb.stiffness_degree = e.at("stiffness_degree").integer(1, 20);
   check_generated_size(e, emb.shape, CellType::Tetrahedron, 1);
   // The cut-cell rules need affine background cells: the tube's are curved (order
   // 2) or not parallelepipeds (Hex8), so only a box grid or a straight .msh will do.

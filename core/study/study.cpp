@@ -24,12 +24,16 @@ namespace fs = std::filesystem;
 const char* const kMetrics[] = {"surface_rms", "surface_max", "displacement_rms", "l2", "h1", "relative_l2",
                                 "relative_h1"};
 
-double median(std::vector<double> v) {
+// The q-quantile of v by linear interpolation between order statistics
+// (Hyndman & Fan type 7, R's and NumPy's default); q = 0.5 is the median.
+double quantile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+  const double x = q * static_cast<double>(v.size() - 1);
+  const size_t k = static_cast<size_t>(x);
+  return k + 1 < v.size() ? v[k] + (x - static_cast<double>(k)) * (v[k + 1] - v[k]) : v[k];
 }
+double median(const std::vector<double>& v) { return quantile(v, 0.5); }
 
 // Cost and size of a run, from its stats.json (scene_runner.hpp).
 json cost_of(const RecordedRun& r) {
@@ -48,6 +52,11 @@ json cost_of(const RecordedRun& r) {
          {"steps", seconds.empty() ? 1 : seconds.size()},
          // A static scene is one step: its solve, mesh and set-up included.
          {"time_per_step_median", seconds.empty() ? st.value("wall_seconds", 0.0) : median(seconds)},
+         // The spread of the per-step times (each step a repeat of "one step"):
+         // their quartiles, so a ratio of medians can be read against it.
+         {"time_per_step_quartiles", seconds.empty() ? json::array({st.value("wall_seconds", 0.0),
+                                                                     st.value("wall_seconds", 0.0)})
+                                                     : json::array({quantile(seconds, 0.25), quantile(seconds, 0.75)})},
          {"total_seconds", st.value("wall_seconds", 0.0)},
          {"newton_iterations", built.value("newton_iterations", 0LL)},
          {"linear_iterations", built.value("linear_iterations", 0LL)},

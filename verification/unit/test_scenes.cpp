@@ -331,6 +331,24 @@ const std::string kEmbeddedTiny =
 // The tiny scene: a tube (r 0.2-0.45, 1 x 12 x 2 generator cells: 144 tets)
 // in a 2 x 2 x 2 Hex8 grid over [-0.5, 0.5]^2 x [0, 1], bottom plane fixed, top
 // plane pushed down at 0.5 m/s for 3 steps of 0.01 s.
+// embedded.stiffness_degree reaches the cut cells' rules (Longva et al. 2020
+// integrated Hex20 at degree 4 where hofem's default is 6; the study variant):
+// at degree 2 the simplified rules keep at most C(2 + 3, 3) = 10 points per cell
+// where the default degree 4 keeps up to 35 (checked above).
+TEST(Scenes, EmbeddedStiffnessDegreeSetsTheCutCellRules) {
+  const Scene s = read_scene(kEmbeddedTiny, {"embedded.stiffness_degree=2", "duration=0.01"});
+  ASSERT_TRUE(s.embedded);
+  EXPECT_EQ(s.embedded->stiffness_degree, 2);
+  SceneRunOptions run;
+  run.write_frames = false;
+  const SceneRunResult r = run_scene(s, "", run);
+  ASSERT_TRUE(r.ok) << r.message;
+  const auto& q = r.stats.at("embedded")["quadrature"];
+  EXPECT_EQ(q["stiffness_degree"].get<int>(), 2);
+  EXPECT_LE(q["points_after"].get<long long>(), 8 * 10);
+  EXPECT_GT(q["points_after"].get<long long>(), 0);
+}
+
 TEST(Scenes, EmbeddedRunWritesTheSurfaceAndQuadratureFigures) {
   const Scene s = read_scene(kEmbeddedTiny);
   ASSERT_TRUE(s.embedded);
@@ -480,7 +498,8 @@ TEST(Scenes, InvalidEmbeddedInputNamesTheKey) {
   const Case cases[] = {
       {edit(tube, tube + R"(, "stabilization": 1e-6)"),
        "t.json: key 'embedded.stabilization' is unknown (valid: box, drop_fraction, file, simplify, stabilisation, "
-       "torus, tube)"},
+       "stiffness_degree, torus, tube)"},
+      {edit(tube, tube + R"(, "stiffness_degree": 0)"), "t.json: embedded.stiffness_degree = 0 is out of range [1, 20]"},
       {edit(tube, tube + R"(, "stabilisation": -1e-6)"),
        "t.json: embedded.stabilisation = -1e-06 is out of range [0, 1]"},
       {edit(tube, tube + R"(, "drop_fraction": 1)"), "t.json: embedded.drop_fraction = 1 is out of range [0, 1)"},
