@@ -19,9 +19,10 @@
 //
 // Counters: unknowns (free DOFs), Newton and Krylov iterations, set-ups
 // (factorisations / preconditioner set-ups) and reuses, set-up / assembly /
-// solve seconds of the step, peak RSS per unknown (the run's own: the
-// process' high-water mark above its RSS at the start of the run, freed heap
-// returned first; includes the mesh and the set-up), the RSS at that start.
+// solve seconds of the step, peak RSS per unknown (the run's own, from an
+// untimed run of the case: the process' high-water mark above its RSS at the
+// start of the run, freed heap returned first; includes the mesh and the
+// set-up), the RSS at that start.
 #include "bench_common.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_runner.hpp"
@@ -33,6 +34,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -140,15 +142,25 @@ double status_bytes(const char* field) {
   return 0.0;
 }
 
-// The memory one run adds to the process: its peak is VmHWM after a reset
-// (clear_refs 5 sets it to the current RSS), less the RSS at the reset. The
-// heap that earlier cases freed is returned to the system first (malloc_trim):
-// glibc keeps it otherwise, and the high-water mark would be an earlier, larger
-// case's (a 23 k-unknown step read 61 kB per unknown that way, 1.4 GB).
-double reset_peak_rss() {
+// The memory one run adds to the process, measured in a run of its own before
+// the timed ones: its peak is VmHWM after a reset (clear_refs 5 sets it to the
+// current RSS), less the RSS at the reset. The heap that earlier cases freed is
+// returned to the system first (malloc_trim): glibc keeps it otherwise, and the
+// high-water mark would be an earlier, larger case's (a 23 k-unknown step read
+// 61 kB per unknown that way, 1.4 GB). The timed runs do not trim: a trimmed
+// heap is page-faulted again, which made the 354 k Tet10 step 4.8 -> 7.0 s, a
+// first step's cost, not the per-step cost of a run that keeps its matrices.
+struct RunMemory {
+  double peak_bytes = 0.0;      ///< VmHWM during the run less the RSS before it
+  double baseline_bytes = 0.0;  ///< the RSS before it (other cases' data, the state)
+};
+RunMemory measure_run_memory(const Scene& scene, const SceneRunOptions& run) {
   malloc_trim(0);
   std::ofstream("/proc/self/clear_refs") << "5";
-  return status_bytes("VmRSS:");
+  const double before = status_bytes("VmRSS:");
+  const SceneRunResult r = run_scene(scene, "", run);
+  if (!r.ok) throw std::runtime_error("the untimed run for its memory failed: " + r.message);
+  return {status_bytes("VmHWM:") - before, before};
 }
 
 void BM_ImplicitStep(benchmark::State& state, const StepCase& c, const std::string& solver) {
@@ -167,11 +179,19 @@ void BM_ImplicitStep(benchmark::State& state, const StepCase& c, const std::stri
   SceneRunOptions run;
   run.write_frames = false;
   run.start = &start;
-  double newton = 0, krylov = 0, setups = 0, reuses = 0, setup_s = 0, assembly_s = 0, solve_s = 0, rss = 0, n = 0;
-  double baseline = 0;
+  // Once per case (the repetitions share it): its memory, untimed.
+  static std::map<std::string, RunMemory> memory;
+  const std::string key = c.name + "/" + solver;
+  if (!memory.count(key)) {
+    try {
+      memory[key] = measure_run_memory(scene, run);
+    } catch (const std::exception& e) {
+      return bench::fail(state, e.what());
+    }
+  }
+  double newton = 0, krylov = 0, setups = 0, reuses = 0, setup_s = 0, assembly_s = 0, solve_s = 0, n = 0;
   std::string chosen;
   for (auto _ : state) {
-    const double before = reset_peak_rss();
     const SceneRunResult r = run_scene(scene, "", run);
     if (!r.ok || r.stats["steps"].size() != 1) return bench::fail(state, r.message);
     const nlohmann::json& step = r.stats["steps"][0];
@@ -184,10 +204,6 @@ void BM_ImplicitStep(benchmark::State& state, const StepCase& c, const std::stri
     setup_s += built["setup_seconds"].get<double>();
     assembly_s += built["assembly_seconds"].get<double>();
     solve_s += built["solve_seconds"].get<double>();
-    if (status_bytes("VmHWM:") - before > rss) {
-      rss = status_bytes("VmHWM:") - before;
-      baseline = before;
-    }
     n = r.stats["free_dofs"].get<double>();
     chosen = built["linear_solver"].get<std::string>();
   }
@@ -200,8 +216,8 @@ void BM_ImplicitStep(benchmark::State& state, const StepCase& c, const std::stri
   state.counters["setup_s"] = setup_s / k;
   state.counters["assembly_s"] = assembly_s / k;
   state.counters["solve_s"] = solve_s / k;
-  state.counters["peak_rss_bytes_per_unknown"] = n > 0 ? rss / n : 0.0;  // the run's own peak (above)
-  state.counters["baseline_rss_bytes"] = baseline;
+  state.counters["peak_rss_bytes_per_unknown"] = n > 0 ? memory[key].peak_bytes / n : 0.0;  // the run's own
+  state.counters["baseline_rss_bytes"] = memory[key].baseline_bytes;
   state.SetLabel(fmt::format("{}, {} ({})", c.family, solver, chosen));
 }
 
