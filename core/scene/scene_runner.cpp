@@ -312,6 +312,13 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
   if (!resumed) frame(0);
   auto last_checkpoint = t_steps;
   auto checkpoint = [&](int k) {
+    // The directory first: the caller's record (a study's recorded states) is
+    // written into it before the checkpoint itself.
+    std::error_code ec;
+    std::filesystem::create_directories(options.checkpoint_dir, ec);
+    if (ec)
+      throw std::runtime_error(
+          fmt::format("{}: cannot create the checkpoint directory: {}", options.checkpoint_dir, ec.message()));
     json rec{{"steps", per_step}, {"deformation", deformation.to_json()}, {"frames", json::array()}};
     for (const auto& [t, file] : frames) rec["frames"].push_back({t, file});
     if (options.checkpoint_record) rec["caller"] = options.checkpoint_record(options.checkpoint_dir, k);

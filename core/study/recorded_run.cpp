@@ -88,7 +88,7 @@ std::optional<RecordedRun> stored_run(const Scene& scene, const std::string& dir
 }  // namespace
 
 RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times,
-                       bool resumable) {
+                       bool resumable, int checkpoint_every_steps) {
   const std::string key = resumable && !out_dir.empty() ? record_key(scene, frame_times) : std::string();
   if (!key.empty())
     if (std::optional<RecordedRun> stored = stored_run(scene, out_dir, key, 1 + frame_times.size())) return *stored;
@@ -125,6 +125,7 @@ RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std
   if (!key.empty() && !scene.is_static) {
     options.checkpoint_dir = (fs::path(out_dir) / "checkpoint").string();
     options.checkpoint_every_seconds = kCheckpointSeconds;
+    options.checkpoint_every_steps = checkpoint_every_steps;
     options.resume = true;
     options.checkpoint_record = [&](const std::string& dir, int) { return write_recorded(dir, run, steps); };
     options.on_resume = [&](const json& files, int step) {

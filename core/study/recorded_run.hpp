@@ -40,12 +40,13 @@ struct RecordedRun {
 /// scene's duration; a static scene's solution is at t = 1). A run that fails is returned with ok = false, its message
 /// and what it recorded.
 RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times,
-                       bool resumable = false);
+                       bool resumable = false, int checkpoint_every_steps = 0);
 // resumable (needs out_dir): the finished run's record is stored in out_dir
 // (record.json and a state file per recorded time, keyed by the scene's
 // fingerprint and the times) and returned again without running when asked for
 // the same scene and times; a run that stops part-way continues from its last
-// checkpoint (out_dir/checkpoint, every kCheckpointSeconds) with what it had
+// checkpoint (out_dir/checkpoint, every 120 s of stepping, and every
+// checkpoint_every_steps steps when > 0: tests) with what it had
 // recorded. Stored results do not know which code made them beyond their
 // provenance: a study asked to resume after a change of the code reuses them
 // (the study's rows say which runs were stored).

@@ -5,6 +5,7 @@
 #include "embedded/embedded_points.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/tube_mesh.hpp"
+#include "study/recorded_run.hpp"
 #include "study/scene_error.hpp"
 #include "study/study.hpp"
 
@@ -235,6 +236,27 @@ TEST(StudyRun, TinyStudyWritesItsTable) {
   EXPECT_TRUE(fs::exists(s.dir / "study.json"));
   EXPECT_TRUE(fs::exists(s.dir / "summary.md"));
   EXPECT_TRUE(fs::exists(s.dir / "runs" / "p2-2" / "stats.json"));
+}
+
+// A resumable run that checkpoints (here after every step; a study's runs every
+// 120 s of stepping) writes its recorded states into the checkpoint directory
+// before the checkpoint itself, ends with its record and the checkpoint gone,
+// and is returned stored, bitwise, when asked again. The first full-size study
+// failed at its first checkpoint: "cannot create .../checkpoint/recorded-0-0.state".
+TEST(StudyRun, CheckpointedRunRecordsItsStates) {
+  const Scratch s;
+  const Study study = read_study(std::string(HOFEM_TEST_DATA_DIR) + "/study_tiny.json");
+  ASSERT_FALSE(study.runs.front().scene.is_static);
+  const std::string dir = (s.dir / "run").string();
+  const RecordedRun a = record_run(study.runs.front().scene, dir, study.frames, true, 1);
+  ASSERT_TRUE(a.ok) << a.message;
+  EXPECT_FALSE(a.stored);
+  EXPECT_TRUE(fs::exists(fs::path(dir) / "record.json"));
+  EXPECT_FALSE(fs::exists(fs::path(dir) / "checkpoint"));
+  const RecordedRun b = record_run(study.runs.front().scene, dir, study.frames, true, 1);
+  EXPECT_TRUE(b.stored);
+  ASSERT_EQ(b.states.size(), a.states.size());
+  for (size_t k = 0; k < a.states.size(); ++k) EXPECT_TRUE(b.states[k] == a.states[k]) << k;
 }
 
 // A threshold the instrument cannot resolve stops the study.
