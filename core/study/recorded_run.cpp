@@ -88,7 +88,7 @@ std::optional<RecordedRun> stored_run(const Scene& scene, const std::string& dir
 }  // namespace
 
 RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times,
-                       bool resumable, int checkpoint_every_steps) {
+                       bool resumable, int checkpoint_every_steps, const std::function<void(double t)>& on_step) {
   const std::string key = resumable && !out_dir.empty() ? record_key(scene, frame_times) : std::string();
   if (!key.empty())
     if (std::optional<RecordedRun> stored = stored_run(scene, out_dir, key, 1 + frame_times.size())) return *stored;
@@ -112,6 +112,7 @@ RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std
       run.states[0] = s.u;
       return;
     }
+    if (on_step) on_step(s.t);
     for (size_t f = 0; f < frame_times.size(); ++f) {
       if (std::abs(s.t - frame_times[f]) < gap[f]) {
         gap[f] = std::abs(s.t - frame_times[f]);

@@ -210,7 +210,14 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
   auto record = [&](const StudyRun& r) {
     if (progress) progress->stage(fmt::format("running {} ({})", r.name, r.family), started / total_runs);
     ++started;
-    RecordedRun run = record_run(r.scene, (out / "runs" / r.name).string(), s.frames, options.resume);
+    // Within a run, its share of the scene's time: the ETA moves with the steps.
+    const double done_before = started - 1, end = std::max(r.scene.duration, 1e-300);
+    auto on_step = [&](double t) {
+      if (progress)
+        progress->update(fmt::format("running {} ({}): t = {:.4g} of {:.4g} s", r.name, r.family, t, end),
+                         (done_before + std::min(t / end, 1.0)) / total_runs);
+    };
+    RecordedRun run = record_run(r.scene, (out / "runs" / r.name).string(), s.frames, options.resume, 0, on_step);
     if (run.stored) say(fmt::format("{}: stored result of an earlier run (same scene)", r.name));
     return run;
   };
