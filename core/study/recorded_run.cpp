@@ -15,6 +15,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 namespace hofem {
 
@@ -25,10 +26,6 @@ using nlohmann::json;
 
 // Long study runs checkpoint this often (a few seconds of writing per hour).
 constexpr double kCheckpointSeconds = 120.0;
-
-std::string record_key(const Scene& scene, const std::vector<double>& frame_times) {
-  return scene_fingerprint(scene) + ":" + json(frame_times).dump();
-}
 
 // The recorded states as state files in dir (x: the displacement; v: unused, zero),
 // named by time index and step so that a file once written never changes.
@@ -58,14 +55,26 @@ void read_recorded(const std::string& dir, const json& files, RecordedRun& run, 
   }
 }
 
-// A stored finished run: its states, and the mesh and embedding built again from the scene.
-std::optional<RecordedRun> stored_run(const Scene& scene, const std::string& dir, const std::string& key, size_t n) {
+// record.json in dir when it is a record of `key`; else a discarded value.
+json read_record(const std::string& dir, const std::string& key) {
   std::ifstream in(fs::path(dir) / "record.json");
-  if (!in) return std::nullopt;
+  if (!in) return json(json::value_t::discarded);
   std::stringstream text;
   text << in.rdbuf();
   json j = json::parse(text.str(), nullptr, false);
-  if (j.is_discarded() || !j.is_object() || j.value("key", "") != key) return std::nullopt;
+  if (j.is_discarded() || !j.is_object() || j.value("key", "") != key || !j.contains("files") ||
+      !j.contains("stats"))
+    return json(json::value_t::discarded);
+  return j;
+}
+
+// A stored finished run: its states, and the mesh and embedding built again from
+// the scene. Nothing when a state file is gone (store_measure dropped it).
+std::optional<RecordedRun> stored_run(const Scene& scene, const std::string& dir, const std::string& key, size_t n) {
+  const json j = read_record(dir, key);
+  if (j.is_discarded()) return std::nullopt;
+  for (const json& f : j.at("files"))
+    if (!f.is_null() && !fs::exists(fs::path(dir) / f.at("file").get<std::string>())) return std::nullopt;
   RecordedRun run;
   run.times.assign(n, std::numeric_limits<double>::quiet_NaN());
   run.states.resize(n);
@@ -86,6 +95,35 @@ std::optional<RecordedRun> stored_run(const Scene& scene, const std::string& dir
 }
 
 }  // namespace
+
+std::string record_key(const Scene& scene, const std::vector<double>& frame_times) {
+  return scene_fingerprint(scene) + ":" + json(frame_times).dump();
+}
+
+std::optional<StoredMeasure> stored_measure(const Scene& scene, const std::string& dir,
+                                            const std::vector<double>& frame_times, const std::string& measure_key) {
+  const json j = read_record(dir, record_key(scene, frame_times));
+  if (j.is_discarded() || !j.value("ok", false) || !j.contains("measured") ||
+      j["measured"].value("key", "") != measure_key)
+    return std::nullopt;
+  return StoredMeasure{j.at("stats"), j["measured"].at("errors")};
+}
+
+void store_measure(const std::string& dir, const std::string& measure_key, const json& errors, bool drop_states) {
+  const fs::path path = fs::path(dir) / "record.json";
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  json j = json::parse(text.str(), nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("files"))
+    throw std::runtime_error(fmt::format("{}: not a run's record: cannot store its measurement", path.string()));
+  j["measured"] = {{"key", measure_key}, {"errors", errors}};
+  write_file_atomically(path.string(), j.dump() + "\n");
+  if (!drop_states) return;
+  std::error_code ec;
+  for (const json& f : j.at("files"))
+    if (!f.is_null()) fs::remove(fs::path(dir) / f.at("file").get<std::string>(), ec);
+}
 
 RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times,
                        bool resumable, int checkpoint_every_steps, const std::function<void(double t)>& on_step) {

@@ -54,4 +54,28 @@ RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std
 // provenance: a study asked to resume after a change of the code reuses them
 // (the study's rows say which runs were stored).
 
+/// What a run's record is keyed by: its scene's fingerprint (scene_fingerprint.hpp)
+/// and the recorded times.
+std::string record_key(const Scene& scene, const std::vector<double>& frame_times);
+
+/// A finished run's errors as a study measured them against a reference, kept in
+/// its record (record.json "measured", keyed by the measurement: the reference's
+/// record key and how it measures), so that a study run in parts need not keep
+/// the states of every run: at the seeds' sizes they are 10 MB each, and only
+/// the reference's are needed to measure a run not yet measured.
+struct StoredMeasure {
+  nlohmann::json stats;   ///< the run's stats.json
+  nlohmann::json errors;  ///< what the study measured (its row's error fields)
+};
+/// The stored measurement of the run of `scene` in `dir` when its record is of
+/// the same scene and times and was measured under `measure_key`; else nothing.
+std::optional<StoredMeasure> stored_measure(const Scene& scene, const std::string& dir,
+                                            const std::vector<double>& frame_times, const std::string& measure_key);
+/// Adds the measurement to the finished run's record in `dir` (atomically), then
+/// removes the record's state files when `drop_states`: the record then stays
+/// good for its measurement only, and a study under another reference runs it
+/// again.
+void store_measure(const std::string& dir, const std::string& measure_key, const nlohmann::json& errors,
+                   bool drop_states);
+
 }  // namespace hofem

@@ -44,6 +44,11 @@ class ReferenceMeasure {
   std::vector<PointValues> values_;
 };
 
+/// Names how scene_error measures: a study's stored measurements are keyed by it
+/// (recorded_run.hpp: StoredMeasure), so a change to what scene_error computes
+/// must change this name, and every stored measurement is then taken again.
+inline constexpr const char* kSceneErrorMethod = "scene_error-1";
+
 struct StateError {
   double t = 0;
   SurfaceDistance surface;

@@ -36,12 +36,10 @@ double quantile(std::vector<double> v, double q) {
 double median(const std::vector<double>& v) { return quantile(v, 0.5); }
 
 // Cost and size of a run, from its stats.json (scene_runner.hpp).
-json cost_of(const RecordedRun& r) {
-  const json& st = r.stats;
+json cost_of(const json& st, bool embedded) {
   std::vector<double> seconds;
   if (st.contains("steps"))
     for (const json& row : st["steps"]) seconds.push_back(row.value("seconds", 0.0));
-  const bool embedded = r.embedded_surface.has_value();
   const long long nodes = st.contains("mesh") ? st["mesh"].value("nodes", 0LL) : 0LL;
   const long long active = embedded ? st["embedded"]["nodes"].value("active", 0LL) : nodes;
   const json built = st.value("built", json::object());
@@ -81,11 +79,10 @@ json errors_of(const std::vector<StateError>& errors) {
 
 // The reference's own error from the coarser level (richardson_error), per
 // metric: surface and L2-type errors converge like h^(p+1), H1 like h^p.
-json richardson_of(const RecordedRun& reference, const RecordedRun& coarser, const std::vector<StateError>& errors) {
-  const double ratio = std::cbrt(static_cast<double>(reference.mesh.num_elements()) / coarser.mesh.num_elements());
-  const int p = reference.mesh.order;
+json richardson_of(long long reference_elements, long long coarser_elements, int p, const json& distance) {
+  const double ratio = std::cbrt(static_cast<double>(reference_elements) / static_cast<double>(coarser_elements));
   json out{{"ratio", ratio}, {"order_assumed", {{"surface_and_l2", p + 1}, {"h1", p}}}};
-  const json measured = errors_of(errors)["max_over_frames"];
+  const json& measured = distance["max_over_frames"];
   json estimate = json::object();
   for (const char* m : kMetrics) {
     const double q = std::string(m).find("h1") != std::string::npos ? p : p + 1;
@@ -159,6 +156,10 @@ std::string summary_markdown(const json& study) {
                       r["floor"]["surface_rms"].get<double>(), cell("surface_rms"), cell("surface_max"),
                       cell("displacement_rms"), cell("relative_l2"), cell("relative_h1"));
   }
+  if (!study.value("complete", true))
+    md += fmt::format("\n**Incomplete** (stopped, or still running): the runs still to come are {}; the verdicts below "
+                      "are of the runs above only.\n",
+                      study["pending"].dump());
   md += fmt::format("\nCheapest run (median time per step) with {} (max over frames) under each threshold:\n\n", metric);
   for (const json& c : study["cheapest"]) {
     md += fmt::format("- {} <= {:.3g}: ", metric, c["threshold"].get<double>());
@@ -171,19 +172,20 @@ std::string summary_markdown(const json& study) {
 }
 
 // A run's row: what it is (its overrides, cell, order) and what it cost.
-json describe(const StudyRun& r, const RecordedRun& run) {
-  json row = cost_of(run);
+json describe(const StudyRun& r, const json& stats, bool ok, const std::string& message, bool stored) {
+  json row = cost_of(stats, r.scene.embedded.has_value());
   row["name"] = r.name;
   row["family"] = r.family;
   row["overrides"] = r.overrides;
   row["cell"] = r.scene.cell == CellType::Hexahedron ? "hex" : "tet";
   row["order"] = r.scene.order;
   row["embedded"] = r.scene.embedded.has_value();
-  row["ok"] = run.ok;
-  row["message"] = run.message;
-  row["stored"] = run.stored;  // taken from an earlier run's record (StudyRunOptions::resume)
+  row["ok"] = ok;
+  row["message"] = message;
+  row["stored"] = stored;  // taken from an earlier run's record (StudyRunOptions::resume)
   return row;
 }
+json describe(const StudyRun& r, const RecordedRun& run) { return describe(r, run.stats, run.ok, run.message, run.stored); }
 
 using Clock = std::chrono::steady_clock;
 
@@ -232,51 +234,106 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
                                  "surface at {} against twice the subdivisions); raise it or 'subdivisions'",
                                  s.file, s.thresholds.front(), floor, s.subdivisions));
   json ref_row = describe(s.reference, reference);
+  // What a stored measurement was measured against (recorded_run.hpp:
+  // StoredMeasure): with --resume each measured run keeps its errors and drops
+  // its states, so a study run in parts keeps only the reference's states.
+  const std::string measure_key = fmt::format("{}|subdivisions={}|{}", record_key(s.reference.scene, s.frames),
+                                              s.subdivisions, kSceneErrorMethod);
+  // A run's row with its errors: from its stored measurement, else run (or taken
+  // from its record) and measured now. Throws nothing; a failed run's row says why.
+  auto measured_row = [&](const StudyRun& r) {
+    const std::string dir = (out / "runs" / r.name).string();
+    if (options.resume)
+      if (const std::optional<StoredMeasure> m = stored_measure(r.scene, dir, s.frames, measure_key)) {
+        ++started;
+        say(fmt::format("{}: stored measurement of an earlier run (same scene, same reference)", r.name));
+        json row = describe(r, m->stats, true, "", true);
+        row.update(m->errors);
+        return row;
+      }
+    const RecordedRun run = record(r);
+    json row = describe(r, run);
+    if (!run.ok) return row;
+    const auto t_measure = Clock::now();
+    json errors = errors_of(scene_error(run, measure, s.subdivisions));
+    errors["measure_seconds"] = seconds_since(t_measure);
+    if (options.resume) store_measure(dir, measure_key, errors, true);
+    row.update(errors);
+    return row;
+  };
+  // Runs whose scene is the coarser reference's (a study's ladder often holds
+  // it) take its row instead of running it again.
+  std::optional<json> coarser_row;
+  std::string coarser_key;
   if (s.coarser_reference) {
-    const RecordedRun coarse = record(*s.coarser_reference);
-    if (!coarse.ok)
-      throw SceneError(fmt::format("{}: reference.coarser: the run failed: {}", s.file, coarse.message));
-    ref_row["richardson"] = richardson_of(reference, coarse, scene_error(coarse, measure, s.subdivisions));
+    json coarse = measured_row(*s.coarser_reference);
+    if (!coarse["ok"].get<bool>())
+      throw SceneError(fmt::format("{}: reference.coarser: the run failed: {}", s.file, coarse["message"].get<std::string>()));
+    ref_row["richardson"] = richardson_of(ref_row["elements"].get<long long>(), coarse["elements"].get<long long>(),
+                                          s.reference.scene.order, coarse);
+    coarser_key = record_key(s.coarser_reference->scene, s.frames);
+    coarser_row = std::move(coarse);
   }
   // Quoted beside every run's errors: the reference's own error, or null without a coarser level.
   const json reference_error = ref_row.contains("richardson") ? ref_row["richardson"]["estimate"] : json(nullptr);
 
-  // 2. Each run, then its errors against the reference.
+  // The study's files, written after every run (a stopped study leaves the rows
+  // it has, "complete": false and the runs still to come).
   json runs = json::array();
+  auto study_json = [&](bool complete) {
+    json pending = json::array();
+    for (size_t k = runs.size(); k < s.runs.size(); ++k) pending.push_back(s.runs[k].name);
+    return json{{"context", provenance_context(s.name)},
+                {"name", s.name},
+                {"file", s.file},
+                {"scene", s.scene_file},
+                {"overrides", s.overrides},
+                {"frames", s.frames},
+                {"metric", s.metric},
+                {"thresholds", s.thresholds},
+                {"subdivisions", s.subdivisions},
+                {"measuring_floor", floor},
+                {"reference", ref_row},
+                {"runs", runs},
+                {"complete", complete},
+                {"pending", pending},
+                {"cheapest", cheapest_of(runs, s.thresholds, s.metric)},
+                {"wall_seconds", seconds_since(t0)}};
+  };
+  auto write_files = [&](const json& study) {
+    write_file_atomically((out / "study.json").string(), study.dump(1) + "\n");
+    write_file_atomically((out / "summary.md").string(), summary_markdown(study));
+  };
+
+  // 2. Each run, then its errors against the reference.
   for (const StudyRun& r : s.runs) {
-    const RecordedRun run = record(r);
-    json row = describe(r, run);
-    if (run.ok) {
-      const auto t_measure = Clock::now();
-      row.update(errors_of(scene_error(run, measure, s.subdivisions)));
+    json row;
+    if (coarser_row && record_key(r.scene, s.frames) == coarser_key) {
+      ++started;
+      row = *coarser_row;
+      row["name"] = r.name;
+      row["family"] = r.family;
+      row["overrides"] = r.overrides;
+      row["same_as"] = s.coarser_reference->name;
+      say(fmt::format("{}: the coarser reference's run (same scene)", r.name));
+    } else {
+      row = measured_row(r);
+    }
+    if (row["ok"].get<bool>()) {
       row["metric"] = row["max_over_frames"][s.metric];
       row["reference_error"] = reference_error;
-      row["measure_seconds"] = seconds_since(t_measure);
       say(fmt::format("{}: {:.3g} s per step, {} = {:.3g}", r.name, row["time_per_step_median"].get<double>(),
                       s.metric, row["metric"].get<double>()));
     } else {
-      say(fmt::format("{} failed: {}", r.name, run.message));
+      say(fmt::format("{} failed: {}", r.name, row["message"].get<std::string>()));
     }
     runs.push_back(row);
+    if (runs.size() < s.runs.size()) write_files(study_json(false));
   }
 
   // 3. The table, the cheapest runs, the files.
-  json study{{"context", provenance_context(s.name)},
-             {"name", s.name},
-             {"file", s.file},
-             {"scene", s.scene_file},
-             {"overrides", s.overrides},
-             {"frames", s.frames},
-             {"metric", s.metric},
-             {"thresholds", s.thresholds},
-             {"subdivisions", s.subdivisions},
-             {"measuring_floor", floor},
-             {"reference", ref_row},
-             {"runs", runs},
-             {"cheapest", cheapest_of(runs, s.thresholds, s.metric)},
-             {"wall_seconds", seconds_since(t0)}};
-  write_file_atomically((out / "study.json").string(), study.dump(1) + "\n");
-  write_file_atomically((out / "summary.md").string(), summary_markdown(study));
+  const json study = study_json(true);
+  write_files(study);
   say(fmt::format("wrote {}", (out / "study.json").string()));
   return study;
 }

@@ -5,6 +5,8 @@ the same scene.
 Usage: check_study_resume.py HOFEM STUDY OUT_DIR
 
   1. a first run computes every run (no row "stored");
+     Each measured run keeps its errors in its record and drops its states;
+     the reference keeps its states (a later run is measured against them);
   2. run again: every run and the reference come from their records ("stored"),
      with the same errors and costs bit for bit (the records hold the states as
      doubles), and in a fraction of the first run's time is not asserted (noise);
@@ -36,6 +38,18 @@ shutil.rmtree(out, ignore_errors=True)
 first = study(hofem, study_file, out)
 if any(r["stored"] for r in first["runs"]) or first["reference"]["stored"]:
     fail("a first run reported a stored record")
+runs_dir = os.path.join(out, "runs")
+reference_dir = os.path.join(runs_dir, first["reference"]["name"])
+for name in sorted(os.listdir(runs_dir)):
+    files = os.listdir(os.path.join(runs_dir, name))
+    states = [f for f in files if f.endswith(".state")]
+    with open(os.path.join(runs_dir, name, "record.json")) as f:
+        record = json.load(f)
+    if os.path.join(runs_dir, name) == reference_dir:
+        if not states:
+            fail("the reference's record lost its states (later runs are measured against them)")
+    elif states or "measured" not in record:
+        fail(f"{name}: a measured run kept its states {states} or has no stored measurement")
 second = study(hofem, study_file, out)
 if not all(r["stored"] for r in second["runs"]) or not second["reference"]["stored"]:
     fail("the second run did not reuse every record: " + str([(r["name"], r["stored"]) for r in second["runs"]]))

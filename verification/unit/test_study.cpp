@@ -235,7 +235,12 @@ TEST(StudyRun, TinyStudyWritesItsTable) {
   EXPECT_EQ(j["cheapest"].size(), 2u);
   EXPECT_TRUE(fs::exists(s.dir / "study.json"));
   EXPECT_TRUE(fs::exists(s.dir / "summary.md"));
-  EXPECT_TRUE(fs::exists(s.dir / "runs" / "p2-2" / "stats.json"));
+  EXPECT_TRUE(fs::exists(s.dir / "runs" / "p1-3" / "stats.json"));
+  // p2-2 is the coarser reference's discretisation: its row is that run's, not a second run.
+  EXPECT_EQ(j["runs"][2]["same_as"], study.coarser_reference->name);
+  EXPECT_FALSE(fs::exists(s.dir / "runs" / "p2-2"));
+  EXPECT_EQ(j["runs"][2]["max_over_frames"], j["reference"]["richardson"]["distance_to_coarser"]);
+  EXPECT_TRUE(j["complete"].get<bool>());
 }
 
 // A resumable run that checkpoints (here after every step; a study's runs every
