@@ -28,11 +28,11 @@ import math
 import os
 import sys
 
-from claims_longva import (fig10_rows, hollow_ball_rows, simplification_rows, slingshot_rows, table1_seed_rows,
+from claims_longva import (fig10_rows, table1_explanation, hollow_ball_rows, simplification_rows, slingshot_rows, table1_seed_rows,
                            twisting_cylinder_rows)
 from claims_check import judge
 from claims_size import describe, describe_timings
-from claims_thesis import compression_rows, drop_integrator_rows, krylov_rows, order_rows
+from claims_thesis import compression_rows, drop_integrator_rows, krylov_implicit_rows, krylov_rows, order_rows
 
 
 def load(reports, studies_dir="studies"):
@@ -70,7 +70,7 @@ def timings(r):
     return f" Timings: {describe_timings(r['timings'])}." if r.get("timings") else ""
 
 
-def markdown(rows, skipped=(), reference_checks=()):
+def markdown(rows, skipped=(), reference_checks=(), explanation=()):
     lines = ["# The seeds' numbers beside hofem's", "",
              "Written by `scripts/paper_claims.py` from the reports (size: the smallest fraction of the seed's "
              "unknowns or elements among the runs a row reads, \"seed's size\" at >= 0.5; the parts are in "
@@ -87,6 +87,7 @@ def markdown(rows, skipped=(), reference_checks=()):
         lines += ["", "Checks of the studies' own references (not claims of the seeds):", ""]
         lines += [f"- {r['id']}: {r['quantity']} = {fmt(r['measured'])}, `{interval(r['check'])}`: "
                   f"{'holds' if r['agrees'] else '**fails**'}. {r['note']}" for r in reference_checks]
+    lines += list(explanation)
     if skipped:
         lines += ["", "Not judged (a study not run at this size, or a row hofem can only bound):", ""] + [f"- {s}" for s in skipped]
     return "\n".join(lines) + "\n"
@@ -96,6 +97,7 @@ def markdown(rows, skipped=(), reference_checks=()):
 GROUPS = [("twisting-cylinder", twisting_cylinder_rows), ("twisting-cylinder", simplification_rows),
           ("hollow-ball", hollow_ball_rows), ("slingshot", slingshot_rows), (None, fig10_rows),
           (None, compression_rows), ("drop-integrators", drop_integrator_rows), ("drop-krylov", krylov_rows),
+          ("drop-krylov-implicit", krylov_implicit_rows),
           ("drop-orders", order_rows), ("twisting-cylinder-seed", table1_seed_rows)]
 
 
@@ -147,7 +149,7 @@ def main(argv):
         json.dump({"rows": rows, "reference_checks": reference_checks, "skipped": skipped}, f, indent=1)
         f.write("\n")
     with open(os.path.join(out, "paper_claims.md"), "w") as f:
-        f.write(markdown(rows, skipped, reference_checks))
+        f.write(markdown(rows, skipped, reference_checks, table1_explanation(R) if full else ()))
     print(f"paper_claims: {sum(r['agrees'] for r in rows)} of {len(rows)} rows agree -> {out}/paper_claims.md")
     return 0
 

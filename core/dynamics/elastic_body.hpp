@@ -66,6 +66,12 @@ struct DynamicsStats {
   int setup_reuses = 0;          ///< matrices an iterative solver took on an earlier set-up (KrylovOptions::setup_reuse)
   int newton_iterations = 0;
   int linear_iterations = 0;
+  /// Newton directions not taken from the Hessian as assembled (NewtonIteration::direction):
+  /// the solver refused it or its direction did not descend (an indefinite
+  /// Hessian, CG meeting p^T A p <= 0), so the PSD-projected Hessian, a shifted
+  /// one or the gradient gave the direction. Zero when every Hessian was used as is.
+  int projected_directions = 0, shifted_directions = 0, gradient_directions = 0;
+  long long hessian_nonzeros = 0;  ///< implicit integrators: stored entries of the Hessian's free-DOF pattern (this rank's, both triangles)
   int floor_evaluations = 0;     ///< 0 without a floor
   int step_halvings = 0;         ///< implicit Euler steps redone as two half steps
   int releases = 0;              ///< times prescribed node sets were released (DOF map rebuilt)

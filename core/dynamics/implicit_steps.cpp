@@ -201,6 +201,11 @@ void TimeStepper::step_implicit_euler(StepReport& report, double h) {
   report.setup_reuses = solver_->setup_reuses() - reuses0;
   stats.newton_iterations += r.iterations;
   stats.linear_iterations += r.linear_iterations;
+  for (const NewtonIteration& it : r.history) {
+    stats.projected_directions += it.direction == "projected";
+    stats.shifted_directions += it.direction == "shifted";
+    stats.gradient_directions += it.direction == "gradient";
+  }
   report.newton_iterations = r.iterations;
   report.linear_iterations = r.linear_iterations;
   report.newton_residual = r.final_residual;

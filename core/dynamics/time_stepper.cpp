@@ -43,6 +43,7 @@ void TimeStepper::ensure_linear_solver() {
   const SolverChoice choice = disc.choose_solver(options_.solver);
   body_.counters().linear_solver = disc.solver_name(choice);
   body_.counters().linear_solver_reason = choice.reason;
+  body_.counters().hessian_nonzeros = disc.assembler().pattern().nonzeros();
   solver_ = disc.make_solver(choice.spec, options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
   // The semi-implicit step's own matrix; backward Euler's Newton keeps its own.
   if (options_.integrator == Integrator::SemiImplicit) K_ = disc.assembler().new_matrix();

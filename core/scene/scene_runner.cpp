@@ -29,6 +29,7 @@ namespace hofem {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(DynamicsStats, linear_solver, linear_solver_reason, mass, mass_matrices_built,
                                    mass_factorizations, gradient_evaluations, energy_evaluations, hessian_assemblies,
                                    symbolic_analyses, factorizations, setup_reuses, newton_iterations, linear_iterations,
+                                   projected_directions, shifted_directions, gradient_directions, hessian_nonzeros,
                                    floor_evaluations, step_halvings, releases, contact_node_steps, max_penetration,
                                    polar_decompositions, assembly_seconds, solve_seconds, setup_seconds)
 

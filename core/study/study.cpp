@@ -38,8 +38,15 @@ double median(const std::vector<double>& v) { return quantile(v, 0.5); }
 // Cost and size of a run, from its stats.json (scene_runner.hpp).
 json cost_of(const json& st, bool embedded) {
   std::vector<double> seconds;
+  // Iterations summed over the per-step rows: a run resumed from a checkpoint
+  // keeps those rows, while its "built" counters start again at the resumption.
+  long long newton = 0, linear = 0;
   if (st.contains("steps"))
-    for (const json& row : st["steps"]) seconds.push_back(row.value("seconds", 0.0));
+    for (const json& row : st["steps"]) {
+      seconds.push_back(row.value("seconds", 0.0));
+      newton += row.value("newton_iterations", 0LL);
+      linear += row.value("linear_iterations", 0LL);
+    }
   const long long nodes = st.contains("mesh") ? st["mesh"].value("nodes", 0LL) : 0LL;
   const long long active = embedded ? st["embedded"]["nodes"].value("active", 0LL) : nodes;
   const json built = st.value("built", json::object());
@@ -56,8 +63,15 @@ json cost_of(const json& st, bool embedded) {
                                                                      st.value("wall_seconds", 0.0)})
                                                      : json::array({quantile(seconds, 0.25), quantile(seconds, 0.75)})},
          {"total_seconds", st.value("wall_seconds", 0.0)},
-         {"newton_iterations", built.value("newton_iterations", 0LL)},
-         {"linear_iterations", built.value("linear_iterations", 0LL)},
+         {"newton_iterations", seconds.empty() ? built.value("newton_iterations", 0LL) : newton},
+         {"linear_iterations", seconds.empty() ? built.value("linear_iterations", 0LL) : linear},
+         // What a step's time went into and what it solved (Table 1's explanation):
+         // totals over the run (a run resumed from a checkpoint: since the resumption).
+         {"projected_directions", built.value("projected_directions", 0LL)},
+         {"setup_seconds", built.value("setup_seconds", 0.0)},
+         {"assembly_seconds", built.value("assembly_seconds", 0.0)},
+         {"solve_seconds", built.value("solve_seconds", 0.0)},
+         {"hessian_nonzeros", built.value("hessian_nonzeros", 0LL)},
          {"linear_solver", built.value("linear_solver", std::string())}};
   if (embedded) c["active_cells"] = st["embedded"]["cells"].value("uncut", 0) + st["embedded"]["cells"].value("cut", 0);
   return c;
