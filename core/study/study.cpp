@@ -148,6 +148,10 @@ std::string summary_markdown(const json& study) {
                                study["reference"].contains("richardson")
                                    ? fmt::format("{:.3g}", study["reference"]["richardson"]["estimate"][metric].get<double>())
                                    : std::string("not estimated (no coarser level)"));
+  md += fmt::format("The runs took {} of wall time (each run's own, over every session that ran them; this "
+                    "session {}).\n\n",
+                    ProgressLog::format_seconds(study.value("run_seconds", 0.0)),
+                    ProgressLog::format_seconds(study.value("wall_seconds", 0.0)));
   md += "Errors are maxima over the frames; the reference's own error (same maximum, Richardson) is in brackets.\n\n";
   md += "| run | family | unknowns | quad. points | time/step [s] | Newton | linear | floor | surface RMS | surface max "
         "| displ. RMS | rel. L2 | rel. H1 |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -201,6 +205,20 @@ json describe(const StudyRun& r, const json& stats, bool ok, const std::string& 
 }
 json describe(const StudyRun& r, const RecordedRun& run) { return describe(r, run.stats, run.ok, run.message, run.stored); }
 
+// A run's share of a study's work, for the progress line's ETA only: its mesh
+// nodes (from a generator's cells and the order; a mesh file, unknown before it
+// is read, counts as 10^4) times its steps. The cost per node differs between
+// families and grows with size, so the estimate is rough but, unlike counting
+// runs, puts a 600 k-unknown reference ahead of a 3 k-unknown run.
+double estimated_work(const Scene& s) {
+  const Eigen::Vector3d c = s.mesh.cells.cast<double>() * s.order;
+  double nodes = s.mesh.tube || s.mesh.torus ? (c[0] + 1.0) * c[1] * (c[2] + 1.0)
+                                              : (c[0] + 1.0) * (c[1] + 1.0) * (c[2] + 1.0);
+  if (!s.mesh.file.empty()) nodes = 1e4;
+  const double steps = s.is_static ? 1.0 : std::max(1.0, std::ceil(s.duration / s.dynamics.dt));
+  return nodes * steps;
+}
+
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -221,20 +239,31 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
   auto say = [&](const std::string& line) {
     if (progress) progress->note(line);
   };
-  int started = 0;
-  const double total_runs = 1.0 + (s.coarser_reference ? 1.0 : 0.0) + static_cast<double>(s.runs.size());
+  // The ETA weighs each run by estimated_work; work found stored (resume) is
+  // left out of both sides, so a resumed study's rate is this session's.
+  double total_work = estimated_work(s.reference.scene), done_work = 0.0, stored_work = 0.0;
+  if (s.coarser_reference) total_work += estimated_work(s.coarser_reference->scene);
+  for (const StudyRun& r : s.runs) total_work += estimated_work(r.scene);
+  const auto share = [&](double work) {
+    return std::clamp((work - stored_work) / std::max(total_work - stored_work, 1e-300), 0.0, 1.0);
+  };
+  // A run's work is done (or was found stored: skipped).
+  const auto finished = [&](const StudyRun& r, bool stored) {
+    done_work += estimated_work(r.scene);
+    if (stored) stored_work += estimated_work(r.scene);
+  };
   auto record = [&](const StudyRun& r) {
-    if (progress) progress->stage(fmt::format("running {} ({})", r.name, r.family), started / total_runs);
-    ++started;
+    if (progress) progress->stage(fmt::format("running {} ({})", r.name, r.family), share(done_work));
     // Within a run, its share of the scene's time: the ETA moves with the steps.
-    const double done_before = started - 1, end = std::max(r.scene.duration, 1e-300);
+    const double work = estimated_work(r.scene), end = std::max(r.scene.duration, 1e-300);
     auto on_step = [&](double t) {
       if (progress)
         progress->update(fmt::format("running {} ({}): t = {:.4g} of {:.4g} s", r.name, r.family, t, end),
-                         (done_before + std::min(t / end, 1.0)) / total_runs);
+                         share(done_work + std::min(t / end, 1.0) * work));
     };
     RecordedRun run = record_run(r.scene, (out / "runs" / r.name).string(), s.frames, options.resume, 0, on_step);
     if (run.stored) say(fmt::format("{}: stored result of an earlier run (same scene)", r.name));
+    finished(r, run.stored);
     return run;
   };
   // 1. The reference, its measuring data and floor, and its own error from the coarser level.
@@ -259,7 +288,7 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
     const std::string dir = (out / "runs" / r.name).string();
     if (options.resume)
       if (const std::optional<StoredMeasure> m = stored_measure(r.scene, dir, s.frames, measure_key)) {
-        ++started;
+        finished(r, true);
         say(fmt::format("{}: stored measurement of an earlier run (same scene, same reference)", r.name));
         json row = describe(r, m->stats, true, "", true);
         row.update(m->errors);
@@ -297,6 +326,11 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
   auto study_json = [&](bool complete) {
     json pending = json::array();
     for (size_t k = runs.size(); k < s.runs.size(); ++k) pending.push_back(s.runs[k].name);
+    // The study's cost over all the sessions that made it: each run's own wall
+    // time (stored runs keep theirs; a coarser level shared with a run counts once).
+    double run_seconds = ref_row.value("total_seconds", 0.0) + (coarser_row ? coarser_row->value("total_seconds", 0.0) : 0.0);
+    for (const json& r : runs)
+      if (!r.contains("same_as")) run_seconds += r.value("total_seconds", 0.0);
     return json{{"context", provenance_context(s.name)},
                 {"name", s.name},
                 {"file", s.file},
@@ -312,6 +346,7 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
                 {"complete", complete},
                 {"pending", pending},
                 {"cheapest", cheapest_of(runs, s.thresholds, s.metric)},
+                {"run_seconds", run_seconds},
                 {"wall_seconds", seconds_since(t0)}};
   };
   auto write_files = [&](const json& study) {
@@ -323,7 +358,7 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
   for (const StudyRun& r : s.runs) {
     json row;
     if (coarser_row && record_key(r.scene, s.frames) == coarser_key) {
-      ++started;
+      finished(r, true);
       row = *coarser_row;
       row["name"] = r.name;
       row["family"] = r.family;
