@@ -28,7 +28,7 @@ import math
 import os
 import sys
 
-from claims_longva import (fig10_rows, table1_explanation, hollow_ball_rows, simplification_rows, slingshot_rows, table1_seed_rows,
+from claims_longva import (fig10_rows, table1_explanation, table1_side_by_side, hollow_ball_rows, simplification_rows, slingshot_rows, table1_seed_rows,
                            twisting_cylinder_rows)
 from claims_check import judge
 from claims_size import describe, describe_timings
@@ -149,7 +149,7 @@ def main(argv):
         json.dump({"rows": rows, "reference_checks": reference_checks, "skipped": skipped}, f, indent=1)
         f.write("\n")
     with open(os.path.join(out, "paper_claims.md"), "w") as f:
-        f.write(markdown(rows, skipped, reference_checks, table1_explanation(R) if full else ()))
+        f.write(markdown(rows, skipped, reference_checks, table1_side_by_side(R) + table1_explanation(R) if full else ()))
     print(f"paper_claims: {sum(r['agrees'] for r in rows)} of {len(rows)} rows agree -> {out}/paper_claims.md")
     return 0
 
