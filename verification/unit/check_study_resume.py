@@ -10,14 +10,19 @@ Usage: check_study_resume.py HOFEM STUDY OUT_DIR
   2. run again: every run and the reference come from their records ("stored"),
      with the same errors and costs bit for bit (the records hold the states as
      doubles), and in a fraction of the first run's time is not asserted (noise);
-  3. the same study with another Young's modulus: no record is reused.
+  3. the same study with another Young's modulus: no record is reused;
+  4. a study killed (SIGKILL) while its last run goes on leaves study.json and
+     summary.md with the runs done, "complete": false and the last run
+     "pending"; resumed, it completes with the earlier runs stored.
 Exit status 0 when all hold, 1 otherwise (with the reason).
 """
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 
 def fail(message):
@@ -70,5 +75,36 @@ with open(changed_path, "w") as f:
 third = study(hofem, changed_path, out)
 if any(r["stored"] for r in third["runs"]) or third["reference"]["stored"]:
     fail("a record was reused for a changed scene")
+# 4. Killed part-way: a quick run, then a slow one (P2 on 4^3 cells for 1 s of
+# the scene: ~10^2 times the quick run), killed once the quick run's rows are written.
+killed_dir = os.path.join(out, "killed")
+changed["runs"] = [changed["runs"][0], {"name": "slow", "family": "Tet10",
+                                        "overrides": ["mesh.order=2", "mesh.box.cells=[4,4,4]", "duration=1.0"]}]
+changed["frames"] = [changed["frames"][0]]
+with open(changed_path, "w") as f:
+    json.dump(changed, f)
+proc = subprocess.Popen([hofem, "study", changed_path, "--out", killed_dir, "--resume"],
+                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+partial = None
+deadline = time.monotonic() + 300
+while time.monotonic() < deadline and proc.poll() is None:
+    try:
+        with open(os.path.join(killed_dir, "study.json")) as f:
+            partial = json.load(f)
+        break
+    except (OSError, ValueError):
+        time.sleep(0.01)
+if proc.poll() is not None:
+    fail("the study ended before it could be killed part-way (the slow run is not slow enough)")
+proc.send_signal(signal.SIGKILL)
+proc.wait()
+if partial is None or partial.get("complete") is not False or partial.get("pending") != ["slow"]:
+    fail(f"a study killed part-way left no partial study.json with the slow run pending: {partial and partial.get('pending')}")
+with open(os.path.join(killed_dir, "summary.md")) as f:
+    if "Incomplete" not in f.read():
+        fail("the partial summary.md does not say it is incomplete")
+resumed = study(hofem, changed_path, killed_dir)
+if resumed.get("complete") is not True or not resumed["runs"][0]["stored"] or resumed["runs"][1]["stored"]:
+    fail("the resumed study did not complete with the first run stored and the slow run computed")
 print(f"check_study_resume: {len(first['runs'])} runs and the reference stored, reused with equal errors, "
-      f"recomputed after a change")
+      f"recomputed after a change; a study killed part-way kept its rows and completed when resumed")
