@@ -88,12 +88,15 @@ proc = subprocess.Popen([hofem, "study", changed_path, "--out", killed_dir, "--r
 partial = None
 deadline = time.monotonic() + 300
 while time.monotonic() < deadline and proc.poll() is None:
+    # study.json is written before summary.md: wait for both (each atomically).
     try:
         with open(os.path.join(killed_dir, "study.json")) as f:
             partial = json.load(f)
-        break
+        if os.path.exists(os.path.join(killed_dir, "summary.md")):
+            break
     except (OSError, ValueError):
-        time.sleep(0.01)
+        pass
+    time.sleep(0.01)
 if proc.poll() is not None:
     fail("the study ended before it could be killed part-way (the slow run is not slow enough)")
 proc.send_signal(signal.SIGKILL)
