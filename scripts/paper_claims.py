@@ -28,8 +28,8 @@ import math
 import os
 import sys
 
-from claims_longva import (fig10_rows, table1_explanation, table1_side_by_side, hollow_ball_rows, simplification_rows, slingshot_rows, table1_seed_rows,
-                           twisting_cylinder_rows)
+from claims_longva import fig10_rows, hollow_ball_rows, simplification_rows, slingshot_rows, twisting_cylinder_rows
+from claims_table1_seed import table1_explanation, table1_seed_rows, table1_side_by_side
 from claims_check import judge
 from claims_size import describe, describe_timings
 from claims_thesis import compression_rows, drop_integrator_rows, krylov_implicit_rows, krylov_rows, order_rows

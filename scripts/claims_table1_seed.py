@@ -1,0 +1,214 @@
+"""The claims rows of Longva et al. 2020's Table 1 at the seed's size
+(scripts/studies/full/twisting-cylinder-seed.json: the 16 m cylinder, E = 5e6,
+nu = 0.48, the seed's resolutions, a 637 k-unknown Tet10 reference), and the
+two tables of the full claims page that set Table 1 beside hofem's and take
+its central ratio apart. The time ratios themselves are claims_longva's
+table1_rows, judged here at seed_threshold."""
+import math
+
+from claims_check import check
+from claims_longva import table1_rows, ratio_row, time_at
+from claims_size import TABLE1_COUNTS, TABLE1_MS, TABLE1_UNKNOWNS, part, size, timing
+
+SEED_THRESHOLD = 0.015  # Longva et al. 2020 §6.2: surface RMS at the final step
+# hofem's run at the seed's Tet10 resolution: 17,664 elements / 29,600 nodes
+# against the seed's 17,695 / 31,805 (scripts/studies/full/twisting-cylinder-seed.json).
+SEED_TET10_RUN = "tet10-16"
+
+
+def seed_threshold(tc):
+    """The surface RMS at which the seed-size rows compare the families.
+
+    The seed picked 0.015 m "as a representative threshold" after its runs, and
+    Table 1 lists, per family, the resolution closest to it: its Tet10 FEM at
+    17,695 elements sits at the threshold. The seed gives neither the radii nor
+    the twist, and hofem's twist (a half turn over 16 m) deforms the cylinder
+    less: every run of every family is under 0.015 m (the row
+    table1.seed.tet10_error_at_seed_resolution compares the two). So the
+    threshold is placed by the seed's rule instead of its number: the error of
+    hofem's Tet10 at the seed's Tet10 resolution, raised by 0.1 % so that the
+    same discretisation under another solver (equal to the Newton tolerance,
+    ~1e-9 m) falls under it too. The other families' resolutions and times at
+    it are then the comparison. KeyError when that run is missing or failed."""
+    run = next((r for r in tc["runs"] if r["name"] == SEED_TET10_RUN and r["ok"]), None)
+    if run is None:
+        raise KeyError(f"{SEED_TET10_RUN}: the run at the seed's Tet10 resolution has not run")
+    return run["metric"] * 1.001
+
+
+def table1_seed_rows(R):
+    """Table 1 at the seed's size (scripts/studies/full/twisting-cylinder-seed.json:
+    16 m long, radii 0.5 / 1 m, the seed's element counts: Tet10 [2, 16, 92] is
+    17,664 elements / 29,600 nodes against the seed's 17.7 k / 31.8 k, Hex20 FCM
+    [6, 6, 56] 2,016 cells), at the final step, judged at seed_threshold.
+    Besides the time ratios: the reference's time over Hex20 FCM's (the seed:
+    21,157 ms, 59x) and the resolution each family needs to reach the threshold
+    (Table 1's counts)."""
+    tc = R["studies"]["twisting-cylinder-seed"]  # KeyError: not run (the group is skipped)
+    T = seed_threshold(tc)
+    tet10 = next(r for r in tc["runs"] if r["name"] == SEED_TET10_RUN)
+    rows = [{
+        "id": "table1.seed.tet10_error_at_seed_resolution", "source": "Longva et al. 2020, Table 1, Fig. 7",
+        "quantity": "surface RMS at the final step of Tet10 FEM at the seed's Tet10 resolution",
+        "paper_value": SEED_THRESHOLD, "measured": tet10["metric"], "unit": "m",
+        "criterion": "within a factor 3 of 0.015 m (the seed's Tet10 at 17,695 elements is its run closest to the "
+                     "threshold; radii and twist, which the seed does not give, move it by that much)",
+        "check": check(SEED_THRESHOLD / 3, SEED_THRESHOLD * 3),
+        "size": size(part("Tet10 FEM", tet10["unknowns"], TABLE1_UNKNOWNS["Tet10 FEM"])),
+        "note": f"{SEED_TET10_RUN}: {tet10['elements']:,} elements; its faceting floor (undeformed surface against "
+                f"the reference's) {tet10['floor']['surface_rms']:.3g} m. A smaller value means hofem's twist "
+                "deforms less than the seed's; the rows below compare at this run's error instead of 0.015 m."}]
+    rows += table1_rows(R, "twisting-cylinder-seed", T, "table1.seed.", "Tet10 reference", require_crossing=True)
+    # hofem study refuses thresholds below 10 x its measuring floor; this
+    # threshold is placed after the study, so the same bound is checked here.
+    rows.append({
+        "reference_check": True, "id": "table1.seed.measuring_floor", "source": "Longva et al. 2020, §6.2",
+        "quantity": "the surface distance's measuring floor (the reference's surface at the study's subdivisions "
+                    "against twice as many) / the threshold",
+        "paper_value": None, "measured": tc["measuring_floor"] / T, "unit": "ratio",
+        "criterion": "<= 0.1: the instrument resolves the threshold", "check": check(high=0.1),
+        "size": size(part("reference", tc["reference"]["unknowns"], TABLE1_UNKNOWNS["reference"])),
+        "note": f"floor {tc['measuring_floor']:.3g} m at {tc['subdivisions']} subdivisions per face edge."})
+    # Longva et al. 2020 ran every family with a direct solver, and cut Hex20
+    # stiffness at degree 4 (35 points before simplification; hofem's default
+    # is 6, 84): the same comparison as the seed ran it, each a study variant.
+    for cid, family, over, why in (
+            ("table1.seed.tet10_over_hex20.cholmod", "Tet10 FEM, CHOLMOD", "Hex20 FCM, CHOLMOD",
+             "As the seed ran it: CHOLMOD on both."),
+            ("table1.seed.tet10_over_hex20.degree4", "Tet10 FEM", "Hex20 FCM, degree 4",
+             "The cut Hex20 stiffness at the seed's degree 4, each family's default solver.")):
+        try:
+            rows.append(ratio_row(R, cid, family, TABLE1_MS["Tet10 FEM"], why, require_crossing=True, study="twisting-cylinder-seed",
+                                  threshold=T, over=over))
+        except KeyError as e:
+            rows.append({"skipped": f"{cid}: {e.args[0]}"})
+    ref = tc["reference"]
+    try:
+        h, hkind, nh, hruns = time_at(tc, "Hex20 FCM", T)
+    except KeyError as e:
+        h, hkind, nh, hruns = math.nan, str(e.args[0]), 0, []
+    if hkind == "interpolated":
+        rows.append({
+            "id": "table1.seed.reference_over_hex20", "source": "Longva et al. 2020, Table 1 (§6.2)",
+            "quantity": f"time per step of the Tet10 reference / Hex20 FCM at surface RMS = {T:.3g} m",
+            "paper_value": round(TABLE1_MS["reference"] / TABLE1_MS["Hex20 FCM"], 2), "measured": ref["time_per_step_median"] / h, "unit": "ratio",
+            "criterion": "> 1 and within a factor 3 of the seed's 59: the reference costs tens of Hex20 FCM steps",
+            "check": check(59.0 / 3, 59.0 * 3),
+            "size": size(part("reference", ref["unknowns"], TABLE1_UNKNOWNS["reference"]),
+                         part("Hex20 FCM", nh, TABLE1_UNKNOWNS["Hex20 FCM"])),
+            "timings": [timing(r) for r in [ref] + hruns],
+            "note": f"reference {ref['elements']} elements, {ref['time_per_step_median']:.4g} s per step "
+                    f"({ref['linear_solver']}); Hex20 FCM {h:.4g} s at the threshold. The seed's reference: 86,292 "
+                    "Tet10, 135,631 nodes, direct solver."})
+    else:
+        rows.append({"skipped": f"table1.seed.reference_over_hex20: Hex20 FCM does not cross {T:.3g} m "
+                                f"within its runs ({hkind})"})
+    for family, (elements, nodes) in TABLE1_COUNTS.items():
+        if family == "reference":
+            continue
+        if family == "Tet10 FEM":
+            rows.append({"skipped": "table1.seed.nodes.tet10: the threshold is placed at the seed's Tet10 "
+                                    "resolution (seed_threshold), so its node count there cannot differ"})
+            continue
+        try:
+            t, kind, n, _ = time_at(tc, family, T)
+        except KeyError as e:
+            rows.append({"skipped": f"table1.seed.nodes.{family}: {e.args[0]}"})
+            continue
+        if kind != "interpolated":
+            rows.append({"skipped": f"table1.seed.nodes.{family}: does not cross {T:.3g} m within its runs "
+                                    f"({kind}), so its resolution at the threshold is only bounded"})
+            continue
+        rows.append({
+            "id": f"table1.seed.nodes.{family.split()[0].lower()}", "source": "Longva et al. 2020, Table 1, Fig. 7",
+            "quantity": f"{family}: nodes at surface RMS = {T:.3g} m / the seed's", "paper_value": nodes,
+            "measured": n / 3 / nodes, "unit": "ratio",
+            "criterion": "within a factor 3 (the seed gives neither the radii nor the twist, so the resolution "
+                         "needed may differ by that much; more would mean another convergence behaviour)",
+            "check": check(1 / 3, 3.0), "size": size(part(family, n, TABLE1_UNKNOWNS[family])),
+            "note": f"{n / 3:.0f} nodes at the crossing (log-interpolated between the bracketing runs); the seed: "
+                    f"{elements:,} elements, {nodes:,} nodes."})
+    return rows
+
+
+def table1_side_by_side(R):
+    """Table 1 in the seed's form (elements, nodes, ms per step at the
+    threshold) beside hofem's at the seed's size: each family's counts and time
+    log-interpolated between the two runs that bracket surface RMS = 0.015 m
+    (as time_at), or the bound its ladder gives ("at most" / "more than");
+    the reference as run. Markdown lines; [] when the study has not been run."""
+    tc = R["studies"].get("twisting-cylinder-seed")
+    try:
+        T = seed_threshold(tc) if tc else None
+    except KeyError:
+        T = None
+    if T is None:
+        return []
+    lines = ["", "Table 1 as the seed printed it (Longva et al. 2020 §6.2; 2 x 14 Xeon cores, direct solvers) and as "
+             f"hofem measured it (2 cores, each family's `auto` solver; at the final step, surface RMS = {T:.3g} m: "
+             f"the error of hofem's Tet10 at the seed's Tet10 resolution, where the seed's is {SEED_THRESHOLD} m "
+             "(claims_longva.seed_threshold); log-interpolated between the bracketing runs):", "",
+             "| family | seed: elements | seed: nodes | seed: ms / step | hofem: elements | hofem: nodes "
+             "| hofem: ms / step | how | hofem runs |", "|---|---:|---:|---:|---:|---:|---:|---|---|"]
+    for family, (elements, nodes) in TABLE1_COUNTS.items():
+        if family == "reference":
+            r = tc["reference"]
+            ours = (r["elements"], r["unknowns"] / 3, r["time_per_step_median"] * 1e3, "as run", r["name"])
+        else:
+            try:
+                t, kind, n, runs = time_at(tc, family, T)
+            except KeyError:
+                lines.append(f"| {family} | {elements:,} | {nodes:,} | {TABLE1_MS[family]:,.0f} | — | — | — | not run | |")
+                continue
+            # A finite-cell run's elements are its active cells (the seed counts those).
+            cells = [r.get("active_cells") or r["elements"] for r in runs]
+            if len(runs) == 2:
+                a = math.log(n / runs[0]["unknowns"]) / math.log(runs[1]["unknowns"] / runs[0]["unknowns"])
+                el = math.exp(math.log(cells[0]) + a * math.log(cells[1] / cells[0]))
+            else:
+                el = cells[0]
+            ours = (round(el), n / 3, t * 1e3, kind, ", ".join(r["name"] for r in runs))
+        lines.append(f"| {family} | {elements:,} | {nodes:,} | {TABLE1_MS[family]:,.0f} | {ours[0]:,} | {ours[1]:,.0f} "
+                     f"| {ours[2]:,.0f} | {ours[3]} | {ours[4]} |")
+    return lines
+
+
+TABLE1_EXPLAINED = ("Hex20 FCM", "Tet10 FEM", "Hex20 FCM, CHOLMOD", "Tet10 FEM, CHOLMOD", "Hex20 FCM, degree 4")
+
+
+def table1_explanation(R):
+    """Table 1's central ratio taken apart (information, not claims): for the
+    runs of Hex20 FCM and Tet10 FEM (each family's default solver, CHOLMOD on
+    both, the seed's degree 4 on cut Hex20 cells) that bracket the threshold,
+    what a step is made of - Newton and Krylov iterations, set-up (preconditioner
+    or factorisation), assembly and solve seconds per step, quadrature points per
+    (active) cell, unknowns and Hessian nonzeros. Markdown lines; [] when the
+    seed-size study has not been run."""
+    tc = R["studies"].get("twisting-cylinder-seed")
+    try:
+        T = seed_threshold(tc) if tc else None
+    except KeyError:
+        T = None
+    if T is None:
+        return []
+    lines = ["", f"Table 1 taken apart: the runs bracketing surface RMS = {T:.3g} m at the final step "
+             "(per step: medians for the time, means over the run for its parts; totals of a run resumed from a "
+             "checkpoint count from the resumption):", "",
+             "| family | run | solver | unknowns | Hessian nonzeros | qp / cell | Newton / step | Krylov / step "
+             "| set-up s / step | assembly s / step | solve s / step | time / step [s] | surface RMS |",
+             "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for family in TABLE1_EXPLAINED:
+        try:
+            _, kind, _, runs = time_at(tc, family, T)
+        except KeyError:
+            continue
+        for r in runs:
+            steps = max(r["steps"], 1)
+            cells = r.get("active_cells") or r["elements"]
+            per = lambda key: r.get(key, 0) / steps
+            lines.append(f"| {family} ({kind}) | {r['name']} | {r['linear_solver']} | {r['unknowns']:,} "
+                         f"| {r.get('hessian_nonzeros', 0):,} | {r['quadrature_points'] / cells:.1f} "
+                         f"| {per('newton_iterations'):.2f} | {per('linear_iterations'):.1f} "
+                         f"| {per('setup_seconds'):.3g} | {per('assembly_seconds'):.3g} | {per('solve_seconds'):.3g} "
+                         f"| {r['time_per_step_median']:.3g} | {r['metric']:.3g} |")
+    return lines
