@@ -58,7 +58,10 @@ def table1_seed_rows(R):
         "note": f"{SEED_TET10_RUN}: {tet10['elements']:,} elements; its faceting floor (undeformed surface against "
                 f"the reference's) {tet10['floor']['surface_rms']:.3g} m. A smaller value means hofem's twist "
                 "deforms less than the seed's; the rows below compare at this run's error instead of 0.015 m."}]
-    rows += table1_rows(R, "twisting-cylinder-seed", T, "table1.seed.", "Tet10 reference", require_crossing=True)
+    try:  # a family not run yet (the study runs in parts) skips these rows, not the group
+        rows += table1_rows(R, "twisting-cylinder-seed", T, "table1.seed.", "Tet10 reference", require_crossing=True)
+    except KeyError as e:
+        rows.append({"skipped": f"table1.seed time ratios: {e.args[0]}"})
     # hofem study refuses thresholds below 10 x its measuring floor; this
     # threshold is placed after the study, so the same bound is checked here.
     rows.append({
