@@ -40,9 +40,12 @@ def seed_threshold(tc):
     a stronger deformation - "a characteristic deformation in the middle"
     (Longva et al. 2020 §6.2), a buckled tube: at two full turns over 2 s
     hofem's Tet10 [2, 16, 92] steps in 3 s until t = 2.8 s and then one step
-    takes more than 80 s (Newton in the non-convex post-buckling region). That
-    regime, with a Newton that gets through it, is what the seed-size Table 1
-    needs next."""
+    takes more than 80 s (Newton in the non-convex post-buckling region); at
+    dt = 1/60 the same run goes through in 5 min (2 Newton iterations a step
+    after the onset), and Tet10 [1, 8, 46] is then 0.028 m (surface RMS) from
+    [2, 16, 92]: the seed's regime, where 0.015 m falls between hofem's Tet10
+    rungs around the seed's resolution. That scene is what the seed-size
+    Table 1 needs next."""
     run = next((r for r in tc["runs"] if r["name"] == SEED_TET10_RUN and r["ok"]), None)
     if run is None:
         raise KeyError(f"{SEED_TET10_RUN}: the run at the seed's Tet10 resolution has not run")
