@@ -150,23 +150,29 @@ def table1_seed_rows(R):
     return rows
 
 
+def seed_study(R):
+    """The seed-size study and its threshold (seed_threshold), or (None, None)
+    while the study or its run at the seed's Tet10 resolution is missing."""
+    tc = R["studies"].get("twisting-cylinder-seed")
+    try:
+        return (tc, seed_threshold(tc)) if tc else (None, None)
+    except KeyError:
+        return None, None
+
+
 def table1_side_by_side(R):
     """Table 1 in the seed's form (elements, nodes, ms per step at the
     threshold) beside hofem's at the seed's size: each family's counts and time
-    log-interpolated between the two runs that bracket surface RMS = 0.015 m
-    (as time_at), or the bound its ladder gives ("at most" / "more than");
+    log-interpolated between the two runs that bracket seed_threshold (as
+    time_at), or the bound its ladder gives ("at most" / "more than");
     the reference as run. Markdown lines; [] when the study has not been run."""
-    tc = R["studies"].get("twisting-cylinder-seed")
-    try:
-        T = seed_threshold(tc) if tc else None
-    except KeyError:
-        T = None
+    tc, T = seed_study(R)
     if T is None:
         return []
     lines = ["", "Table 1 as the seed printed it (Longva et al. 2020 §6.2; 2 x 14 Xeon cores, direct solvers) and as "
              f"hofem measured it (2 cores, each family's `auto` solver; at the final step, surface RMS = {T:.3g} m: "
              f"the error of hofem's Tet10 at the seed's Tet10 resolution, where the seed's is {SEED_THRESHOLD} m "
-             "(claims_longva.seed_threshold); log-interpolated between the bracketing runs):", "",
+             "(claims_table1_seed.seed_threshold); log-interpolated between the bracketing runs):", "",
              "| family | seed: elements | seed: nodes | seed: ms / step | hofem: elements | hofem: nodes "
              "| hofem: ms / step | how | hofem runs |", "|---|---:|---:|---:|---:|---:|---:|---|---|"]
     for family, (elements, nodes) in TABLE1_COUNTS.items():
@@ -203,11 +209,7 @@ def table1_explanation(R):
     or factorisation), assembly and solve seconds per step, quadrature points per
     (active) cell, unknowns and Hessian nonzeros. Markdown lines; [] when the
     seed-size study has not been run."""
-    tc = R["studies"].get("twisting-cylinder-seed")
-    try:
-        T = seed_threshold(tc) if tc else None
-    except KeyError:
-        T = None
+    tc, T = seed_study(R)
     if T is None:
         return []
     lines = ["", f"Table 1 taken apart: the runs bracketing surface RMS = {T:.3g} m at the final step "
