@@ -31,7 +31,10 @@ RATE_TOLERANCE = 1e-12
 
 
 def fail(message):
-    sys.exit(f"check_mms_lists: {message}")
+    # "FAIL:" against the successes' "OK:", so that no pattern for one matches the
+    # other; exit status 1 is the verdict either way (ctest cli.mms_lists_*).
+    print(f"check_mms_lists: FAIL: {message}", file=sys.stderr)
+    sys.exit(1)
 
 
 def run(hofem, args):
@@ -60,7 +63,7 @@ def check_json(hofem):
             expected = math.log(coarse[error] / fine[error]) / math.log(coarse["h"] / fine["h"])
             if fine[rate] is None or abs(fine[rate] - expected) > RATE_TOLERANCE * max(1.0, abs(expected)):
                 fail(f"order {fine['order']} n {fine['n']}: {rate} {fine[rate]}, recomputed {expected!r}")
-    print("check_mms_lists: 4 JSON lines, rates = log(e_prev / e) / log(h_prev / h), none for each order's first n")
+    print("check_mms_lists: OK: 4 JSON lines, rates = log(e_prev / e) / log(h_prev / h), none for each order's first n")
 
 
 def check_table(hofem):
@@ -73,14 +76,14 @@ def check_table(hofem):
         fail("rows out of order:\n" + "\n".join(lines))
     if rows[0][5] != "-" or rows[2][5] != "-" or rows[1][5] == "-" or rows[3][5] == "-":
         fail("the first n of each order has no rate, the second one:\n" + "\n".join(lines))
-    print("check_mms_lists: table with 4 rows, '-' for the first rate of each order")
+    print("check_mms_lists: OK: table with 4 rows, '-' for the first rate of each order")
 
 
 def check_single(hofem):
     lines = run(hofem, ["mms", "--problem", "linear", "--order", "1", "--n", "2", "--json"])
     if len(lines) != 1 or set(json.loads(lines[0])) != SINGLE_KEYS:
         fail("a single run prints one JSON object with the fields it always had:\n" + "\n".join(lines))
-    print("check_mms_lists: a single run prints the object it always did")
+    print("check_mms_lists: OK: a single run prints the object it always did")
 
 
 if __name__ == "__main__":
