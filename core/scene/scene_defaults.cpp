@@ -31,6 +31,7 @@ nlohmann::json default_scene_json() {
                  {"newton_rtol", d.newton.rtol},
                  {"newton_max_iterations", d.newton.max_iterations},
                  {"eisenstat_walker", d.newton.eisenstat_walker},
+                 {"hessian", d.newton.project_psd ? "projected" : "as-assembled"},
                  {"distributed",
                   {{"krylov", dist.krylov},
                    {"amg", dist.amg},

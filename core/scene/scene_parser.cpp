@@ -245,7 +245,7 @@ Scene parse_validated(const json& j, const std::string& origin) {
   if (root.has("solver")) {
     const Field sv = root.at("solver");
     sv.keys({"linear", "krylov_iterations", "setup_reuse", "distributed", "newton_rtol",
-             "newton_max_iterations", "eisenstat_walker"});
+             "newton_max_iterations", "eisenstat_walker", "hessian"});
     if (sv.has("linear")) {
       std::vector<std::string> names = linear_solver_names();
       names.insert(names.begin(), "auto");
@@ -274,6 +274,7 @@ Scene parse_validated(const json& j, const std::string& origin) {
     if (sv.has("newton_rtol")) d.newton.rtol = sv.at("newton_rtol").number(0.0, 1.0, true, true);
     if (sv.has("newton_max_iterations")) d.newton.max_iterations = sv.at("newton_max_iterations").integer(1, 10000);
     if (sv.has("eisenstat_walker")) d.newton.eisenstat_walker = sv.at("eisenstat_walker").boolean();
+    if (sv.has("hessian")) d.newton.project_psd = sv.at("hessian").choice({"as-assembled", "projected"}) == "projected";
   }
   if (root.has("gravity")) d.gravity = root.at("gravity").vec3();
   if (root.has("damping")) {

@@ -110,6 +110,19 @@ TEST(Scenes, InvalidScenesNameTheFileAndTheKey) {
   }
 }
 
+// solver.hessian chooses Newton's matrix: the Hessian as assembled by default,
+// the PSD-projected one when asked (both spellings checked, an unknown one named).
+TEST(Scenes, HessianKeyChoosesTheProjectedHessian) {
+  EXPECT_FALSE(parse_scene(kValid, "t.json").dynamics.newton.project_psd);
+  const std::string solver = R"("boundary":)";
+  EXPECT_FALSE(parse_scene(with(solver, R"("solver": {"hessian": "as-assembled"}, "boundary":)"), "t.json")
+                   .dynamics.newton.project_psd);
+  EXPECT_TRUE(parse_scene(with(solver, R"("solver": {"hessian": "projected"}, "boundary":)"), "t.json")
+                  .dynamics.newton.project_psd);
+  EXPECT_NE(error_of(with(solver, R"("solver": {"hessian": "exact"}, "boundary":)")).find("solver.hessian"),
+            std::string::npos);
+}
+
 TEST(Scenes, BuiltInScenesAreValid) {
   const std::filesystem::path dir = std::filesystem::path(HOFEM_SOURCE_DIR) / "scripts" / "scenes";
   int count = 0;
