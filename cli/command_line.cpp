@@ -1,10 +1,12 @@
 #include "command_line.hpp"
 
+#include "material/material.hpp"
 #include "provenance/provenance.hpp"
 #include "solver/solver_spec.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <sstream>
 #include <string>
@@ -47,7 +49,11 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
 
   auto& mo = out.mms;
   auto* mms = app.add_subcommand("mms", "Solve a manufactured-solution problem on the unit cube and print its errors");
-  mms->add_option("--problem", mo.problem, "linear or neohookean")->required();
+  mms->add_option("--problem", mo.problem,
+                  fmt::format("The material of the manufactured problem ({}); linear: one linear solve of linear "
+                              "elasticity at displacement scale 1, the others Newton at scale 0.1",
+                              fmt::join(material_names(), ", ")))
+      ->required();
   mms->add_option("--order", mo.order,
                   "Element order (tet: >= 1; hex: 1 = Hex8, 2 = Hex20), or a comma list (1,2,3): every order x n "
                   "combination runs, printed as a table with observed rates (--json: one JSON object per line)")

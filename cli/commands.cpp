@@ -14,6 +14,7 @@
 #include "mesh/mesh_reorient.hpp"
 #include "mesh/mesh_upgrade.hpp"
 #include "io/vtu_writer.hpp"
+#include "material/material.hpp"
 #include "quadrature/rule_library.hpp"
 
 #include "scene/scene.hpp"
@@ -21,11 +22,13 @@
 #include "study/study.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <mpi.h>
 
 #include "parallel/mpi_runtime.hpp"
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstdlib>
@@ -337,8 +340,10 @@ int run_mms(const MmsOptions& o) {
   const CellType cell = parse_cell_or_throw(o.cell);
   if (cell != CellType::Tetrahedron && cell != CellType::Hexahedron)
     throw UsageError(fmt::format("--cell: mms runs on tet or hex meshes, got '{}'", o.cell));
-  if (o.problem != "linear" && o.problem != "neohookean")
-    throw UsageError(fmt::format("--problem: unknown problem '{}' (valid: linear, neohookean)", o.problem));
+  // The manufactured problems are the materials (material_names(), the one list).
+  const std::vector<std::string> problems = material_names();
+  if (std::find(problems.begin(), problems.end(), o.problem) == problems.end())
+    throw UsageError(fmt::format("--problem: unknown problem '{}' (valid: {})", o.problem, fmt::join(problems, ", ")));
   const std::vector<int> sizes = parse_number_list(o.n, "--n");
   const std::vector<int> orders = parse_number_list(o.order, "--order");
   check_mms_cases(o, cell, orders, sizes);

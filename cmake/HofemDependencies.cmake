@@ -19,3 +19,11 @@ hofem_require(benchmark_FOUND "Google Benchmark" "libbenchmark-dev")
 
 # numpy + matplotlib for the plots: Debian's interpreter, not whatever python3 is first on PATH.
 set(HOFEM_PYTHON /usr/bin/python3 CACHE FILEPATH "Python interpreter with numpy and matplotlib")
+
+# sympy derives the material laws the verification suite compares core/material
+# with (verification/symbolic/derive_material_laws.py, run at build time).
+execute_process(COMMAND /usr/bin/python3 -c "import sympy" RESULT_VARIABLE HOFEM_SYMPY_STATUS OUTPUT_QUIET ERROR_QUIET)
+if(HOFEM_SYMPY_STATUS EQUAL 0)
+  set(HOFEM_SYMPY_FOUND TRUE)
+endif()
+hofem_require(HOFEM_SYMPY_FOUND "sympy (for /usr/bin/python3)" "python3-sympy")

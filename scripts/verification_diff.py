@@ -3,7 +3,8 @@
 that must not change results (a moved file, a renamed type), run the main job
 before and after and compare the two reports/verification.json.
 
-Rows are matched by (group, name): their `measured` values, thresholds and
+Rows are matched by (group, name) (a name two rows share, as a rate's two
+bounds do, by its comparison too): their `measured` values, thresholds and
 verdicts; measurements by (group, name): their `value`. Wall-clock figures
 (group "timing", and any group or name that says "seconds") are left out unless
 --timing: they change from run to run. Prints the
@@ -22,13 +23,23 @@ def is_wall_clock(group, name):
     return group == "timing" or "seconds" in group or "seconds" in name
 
 
+def row_keys(rows):
+    """(group, name) per row; a name two rows share (a rate's lower and upper bound,
+    Report::check_rate) is told apart by its comparison: "name (>=)", "name (<=)"."""
+    seen = {}
+    for r in rows:
+        seen[(r["group"], r["name"])] = seen.get((r["group"], r["name"]), 0) + 1
+    return [(r["group"], r["name"] if seen[(r["group"], r["name"])] == 1 else f"{r['name']} ({r.get('compare')})")
+            for r in rows]
+
+
 def numbers(report, timing):
     """(kind, group, name) -> value for every number of the report."""
     out, verdicts = {}, {}
-    for r in report.get("rows", []):
+    rows = report.get("rows", [])
+    for r, key in zip(rows, row_keys(rows)):
         if is_wall_clock(r["group"], r["name"]) and not timing:
             continue
-        key = (r["group"], r["name"])
         out[("measured",) + key] = r.get("measured")
         out[("threshold",) + key] = r.get("threshold")
         verdicts[key] = r.get("pass")

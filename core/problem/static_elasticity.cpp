@@ -225,6 +225,11 @@ Eigen::VectorXd StaticElasticity::linear_step(const Eigen::VectorXd& u, double t
   return u + du;
 }
 
+double residual_over_tolerance(const StaticReport& report, double rtol) {
+  return report.steps.empty() ? std::numeric_limits<double>::infinity()
+                              : residual_over_tolerance(report.steps.back(), rtol);
+}
+
 StaticReport StaticElasticity::solve() {
   StaticReport report;
   report.setup_seconds = setup_seconds_hint_;

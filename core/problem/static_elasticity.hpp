@@ -69,6 +69,11 @@ struct StaticReport {
   std::string message;
 };
 
+/// The last load step's residual_over_tolerance (solver/newton.hpp): <= 1 exactly
+/// when the solve converged (a failed solve ends on its failed step); +inf when
+/// no step ran.
+double residual_over_tolerance(const StaticReport& report, double rtol);
+
 class StaticElasticity final : public NonlinearProblem {
  public:
   StaticElasticity(const Mesh& mesh, const Material& material, std::vector<DirichletCondition> dirichlet,

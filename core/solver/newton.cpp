@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hofem {
 
@@ -46,6 +47,7 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
   // Ends the iteration `it` unconverged with `message`, recording it.
   const auto fail = [&](int it, NewtonIteration& rec, std::string message) {
     result.message = std::move(message);
+    result.final_residual = rec.residual;
     result.iterations = it;
     result.history.push_back(rec);
     return result;
@@ -105,6 +107,11 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
                                     : fmt::format("no convergence in {} iterations (|g| = {:.3e})", opt.max_iterations,
                                                   result.final_residual);
   return result;
+}
+
+double residual_over_tolerance(const NewtonResult& result, double rtol) {
+  if (!(result.force_scale > 0.0)) return std::numeric_limits<double>::infinity();
+  return result.final_residual / (rtol * result.force_scale);
 }
 
 }  // namespace hofem

@@ -74,8 +74,8 @@ struct NewtonIteration {
 struct NewtonResult {
   bool converged = false;
   int iterations = 0;
-  double final_residual = 0.0;
-  double force_scale = 0.0;
+  double final_residual = 0.0;  ///< ||g|| where it stopped (converged or not)
+  double force_scale = 0.0;     ///< 0 if it stopped before measuring one
   int linear_iterations = 0;  ///< summed over the iterations
   std::vector<NewtonIteration> history;
   std::string message;  ///< why it stopped
@@ -83,5 +83,12 @@ struct NewtonResult {
 
 NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, LinearSolver& solver,
                              const NewtonOptions& options);
+
+/// How far the solve ended from its stopping rule: final_residual / (rtol *
+/// force_scale), <= 1 exactly when it converged (the verification suite checks
+/// this number instead of the flag). +inf when Newton stopped before it measured a
+/// force scale (force_scale 0: the energy was undefined at the initial guess;
+/// NonlinearProblem::force_scale is > 0 otherwise), NaN when the residual is.
+double residual_over_tolerance(const NewtonResult& result, double rtol);
 
 }  // namespace hofem

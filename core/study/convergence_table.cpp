@@ -29,7 +29,7 @@ json optional_number(const std::optional<double>& v) { return v ? json(*v) : jso
 // The manufactured problem is posed without dimensions: the unit cube, E = 1, u*
 // of amplitude 1 (linear) or 0.1 (Neo-Hookean); lengths are in cube sides.
 constexpr Column kColumns[] = {
-    {"problem", "-", "manufactured problem: linear (linear elasticity) or neohookean",
+    {"problem", "-", "manufactured problem: the material (material_names(); linear: linear elasticity)",
      [](const ConvergenceRow& r) { return json(r.problem); }},
     {"cell", "-", "element shape: tet or hex", [](const ConvergenceRow& r) { return json(r.cell); }},
     {"order", "-", "Lagrange order p (hex: 1 = Hex8, 2 = Hex20 serendipity)",

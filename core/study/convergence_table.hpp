@@ -22,7 +22,7 @@ namespace hofem {
 double observed_rate(double error_coarse, double error_fine, double h_coarse, double h_fine);
 
 struct ConvergenceRow {
-  std::string problem;  ///< linear | neohookean
+  std::string problem;  ///< the material (material_names())
   std::string cell;     ///< tet | hex
   int order = 1;
   std::string mesh;  ///< uniform | perturbed

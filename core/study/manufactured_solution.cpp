@@ -14,6 +14,7 @@
 
 #include <Eigen/LU>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
 #include <algorithm>
@@ -101,12 +102,18 @@ void perturb_interior_vertices(Mesh& linear, double h, double amplitude, unsigne
 
 }  // namespace
 
+LameParameters mms_lame() { return LameParameters::from_young_poisson(1.0, 0.3); }
+
+double mms_displacement_scale(const std::string& problem) { return problem == "linear" ? 1.0 : 0.1; }
+
 MmsProblem::MmsProblem(const MmsCase& c) {
-  if (c.problem != "linear" && c.problem != "neohookean")
-    throw std::invalid_argument(fmt::format("mms: unknown problem '{}' (valid: linear, neohookean)", c.problem));
-  linear = c.problem == "linear";
-  material = make_material(linear ? "linear" : "neohookean", LameParameters::from_young_poisson(1.0, 0.3));
-  ustar = ManufacturedDisplacement{linear ? 1.0 : 0.1};
+  const std::vector<std::string> names = material_names();
+  if (std::find(names.begin(), names.end(), c.problem) == names.end())
+    throw std::invalid_argument(
+        fmt::format("mms: unknown problem '{}' (valid: {})", c.problem, fmt::join(names, ", ")));
+  material = make_material(c.problem, mms_lame());
+  linear = material->constant_tangent();
+  ustar = ManufacturedDisplacement{mms_displacement_scale(c.problem)};
 
   h = 1.0 / c.n;
   if (c.distributed && !c.perturbed && c.vtu.empty()) {
@@ -124,7 +131,7 @@ MmsProblem::MmsProblem(const MmsCase& c) {
   }
   const Mesh& m = piece ? piece->mesh() : mesh;
 
-  body_force = [this](const Eigen::Vector3d& X) {
+  body_force = c.body_force ? c.body_force : [this](const Eigen::Vector3d& X) {
     const Mat3 F = Mat3::Identity() + ustar.gradient(X);
     Eigen::Matrix3d H[3];
     ustar.hessians(X, H);
@@ -219,6 +226,7 @@ MmsResult run_mms(const MmsCase& c) {
   r.linear_solver = rep.linear_solver;
   r.linear_solver_reason = rep.linear_solver_reason;
   r.newton_rtol = p.options.newton.rtol;
+  r.residual_over_tolerance = residual_over_tolerance(rep, p.options.newton.rtol);  // serial and distributed alike
   r.converged = rep.converged;
   r.message = rep.message;
   r.setup_seconds = rep.setup_seconds;

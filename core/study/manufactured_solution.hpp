@@ -7,7 +7,7 @@
 //   u*_x = s sin(pi x) sin(pi y) sin(pi z)
 //   u*_y = s 0.5 sin(pi(x+1/4)) sin(pi(y+1/4)) sin(pi(z+1/4))
 //   u*_z = s 0.25 cos(pi x) cos(pi y) e^z
-// with s = 1 (linear elasticity) or 0.1 (Neo-Hookean), E = 1, nu = 0.3.
+// with s = 1 (linear elasticity) or 0.1 (the hyperelastic materials), E = 1, nu = 0.3.
 // Body force f = -Div P(F*), F* = I + grad u*, evaluated exactly:
 //   f_i = - sum_{j,k,l} dP_ij/dF_kl (F*) d^2 u*_k / dX_l dX_j.
 #include "io/vtu_writer.hpp"
@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,8 +39,18 @@ struct ManufacturedDisplacement {
 /// d^2 u_k / dX_l dX_j:  f_i = -Div P = -sum_{j,k,l} A(i + 3j, k + 3l) H[k](l, j).
 Eigen::Vector3d equilibrium_body_force(const Eigen::Matrix<double, 9, 9>& A, const Eigen::Matrix3d H[3]);
 
+/// The manufactured problems' material parameters (E = 1, nu = 0.3) and the
+/// scale of u* for a material: 1 for linear elasticity (one linear solve), 0.1
+/// for the hyperelastic materials (F* stays within ~0.5 of I, det F* > 0).
+LameParameters mms_lame();
+double mms_displacement_scale(const std::string& problem);
+
+/// The body force of a manufactured problem at X (computed elsewhere, e.g. the
+/// verification suite's symbolic material law, instead of from core/material).
+using MmsBodyForce = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
+
 struct MmsCase {
-  std::string problem = "linear";  ///< "linear" or "neohookean"
+  std::string problem = "linear";  ///< the material: a name of material_names()
   CellType cell = CellType::Tetrahedron;
   int order = 1;
   int n = 4;                  ///< cubes per side
@@ -60,6 +71,10 @@ struct MmsCase {
   /// positional initialisers of the fields above stay valid.
   std::string export_matrix{};
   VtuFormat vtu_format = VtuFormat::ascii;  ///< encoding of `vtu` (hofem mms --vtu-format)
+  /// If set: the body force that balances u* (the verification suite passes the
+  /// one it derives from the material's energy with sympy); otherwise
+  /// equilibrium_body_force with the material's own tangent.
+  MmsBodyForce body_force{};
 };
 
 struct MmsResult {
@@ -72,6 +87,10 @@ struct MmsResult {
   std::string linear_solver;         ///< the solver used ("auto" resolved)
   std::string linear_solver_reason;  ///< why
   double newton_rtol = 0.0;          ///< the residual tolerance the solve ran to
+  /// The last load step's final |g| / (newton_rtol * force scale): <= 1 exactly
+  /// when Newton met its stopping rule (static_elasticity.hpp); +inf when it
+  /// stopped before measuring a force scale.
+  double residual_over_tolerance = 0.0;
   double setup_seconds = 0.0, assembly_seconds = 0.0, solve_seconds = 0.0, total_seconds = 0.0;
   int quadrature_degree = 0, error_degree = 0;
   std::vector<double> newton_residuals;  ///< |g| before each Newton step, all load steps

@@ -36,8 +36,9 @@
 #include <fmt/format.h>
 
 #include <chrono>
-#include <map>
 #include <cmath>
+#include <map>
+#include <string>
 #include <vector>
 
 namespace hofem::verification {
@@ -48,7 +49,9 @@ struct Solution {
   double l2 = 0.0;  ///< relative L2 error over the measured region
   int dofs = 0;
   double seconds = 0.0;  ///< loads, solve and error (the grid's quadrature not included)
-  bool converged = false;
+  double residual_over_tolerance = 0.0;  ///< Newton's final |g| / (rtol * force scale): <= 1 converged
+  double rtol = 0.0;                     ///< Newton's rtol
+  std::string message;                   ///< the solve's
 };
 
 /// One background grid and its cut-cell rules (built once, shared by the FCM and
@@ -160,7 +163,9 @@ Solution solve(const Grid& grid, bool staircase, const Mesh& surface) {
                            {}, o);
   const StaticReport r = problem.solve();
   Solution s;
-  s.converged = r.converged;
+  s.residual_over_tolerance = residual_over_tolerance(r, o.newton.rtol);
+  s.rtol = o.newton.rtol;
+  s.message = r.message;
   s.dofs = problem.dofs().num_free();
   s.l2 = l2_error(background, exact_cells, measured, problem.displacement(), exact);
   s.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -208,8 +213,11 @@ void add_fcm_convergence_checks(Report& report, const std::string& level) {
       const Solution& s = solutions[{series.order, series.staircase}][k];
       report.measure(group, fmt::format("{} h=1/{} l2", series.name, n), s.l2,
                      fmt::format("relative L2 error; {} DOFs; {:.2f} s (loads, solve, error)", s.dofs, s.seconds));
-      report.check(group, fmt::format("{} h=1/{}: solve converged", series.name, n), s.converged ? 1.0 : 0.0, 1.0,
-                   Compare::AtLeast);
+      report.check(group, fmt::format("{} h=1/{}: solve converged", series.name, n), s.residual_over_tolerance, 1.0,
+                   Compare::AtMost,
+                   fmt::format("final Newton residual |g| / (rtol {:.0e} x force scale): <= 1 is Newton's stopping "
+                               "rule (newton.hpp), the error is of the discrete solution only if it holds; {}",
+                               s.rtol, s.message));
       h.push_back(1.0 / n);
       error.push_back(s.l2);
     }
@@ -220,11 +228,17 @@ void add_fcm_convergence_checks(Report& report, const std::string& level) {
     if (!series.staircase) {
       // Optimal L2 rate p + 1 (Hex8 2, Hex20 3; Longva et al.'s Fig. 10) on each of the
       // last two pairs of grids, less 0.2 / 0.3 for what is left of the
-      // pre-asymptotic range (measured: Hex8 1.96, 1.98; Hex20 2.98, 2.98).
-      const double bound = series.order == 1 ? 1.8 : 2.7;
+      // pre-asymptotic range (measured: Hex8 1.96, 1.98; Hex20 2.98, 2.98; the ci
+      // level's 1/4 -> 1/8: 1.88, 2.96). Every measured rate approaches from below,
+      // so the window is symmetric: above p + 1 + 0.2 / 0.3 the error is not the
+      // L2 norm of the discrete solution's error (or u*, not polynomial, were
+      // reproduced exactly), and a whole order too fast fails.
+      const double window = series.order == 1 ? 0.2 : 0.3;
       for (size_t k = std::max<size_t>(1, last - 1); k <= last; ++k)
-        report.check(group, fmt::format("{} L2 rate h=1/{} -> 1/{}", series.name, grids[k - 1], grids[k]), rate(k), bound,
-                     Compare::AtLeast, fmt::format("O(h^{}) expected", optimal));
+        report.check_rate(group, fmt::format("{} L2 rate h=1/{} -> 1/{}", series.name, grids[k - 1], grids[k]), rate(k),
+                          optimal, window, window,
+                          fmt::format("O(h^{}) expected; measured from below (1.88-1.99 Hex8, 2.96-2.98 Hex20)",
+                                      optimal));
       // The error must fall on every refinement: a curve that turns upward is a defect.
       double worst = 0.0;
       for (size_t k = 1; k <= last; ++k) worst = std::max(worst, error[k] / error[k - 1]);
@@ -243,7 +257,10 @@ void add_fcm_convergence_checks(Report& report, const std::string& level) {
     // Its rate is held below O(h^3) only where there is an asymptotic range to
     // speak of (the full level's 1/16 -> 1/24: 0.75 measured, 1.04 to 1/32); between 1/4 and 1/8
     // it swings with the cells that enter the staircase (2.59 with these loads,
-    // 1.89 when the loads went to cells outside the staircase).
+    // 1.89 when the loads went to cells outside the staircase). One-sided by
+    // design, unlike the FCM rates: the claim is that the O(h) geometry error
+    // keeps the staircase from the optimal rate (Longva et al.: "dramatically
+    // reduced"), and no rate is expected from it that a lower bound could hold.
     if (series.order == 2 && grids.size() >= 4)
       report.check(group, fmt::format("{} L2 rate h=1/{} -> 1/{}", series.name, grids[last - 1], grids[last]),
                    rate(last), optimal - 0.5, Compare::AtMost, "below O(h^3)");

@@ -4,15 +4,34 @@
 
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 namespace hofem::verification {
 
 const CheckRow& Report::check(std::string group, std::string name, double measured, double threshold, Compare compare,
                               std::string why) {
+  if (why.empty())
+    throw std::invalid_argument(fmt::format("verification row '{}' / '{}' has no why: every threshold needs its reason",
+                                            group, name));
   CheckRow r{std::move(group), std::move(name), measured, threshold, compare, false, std::move(why)};
   r.pass = !std::isnan(measured) && (compare == Compare::AtMost ? measured <= threshold : measured >= threshold);
   rows_.push_back(std::move(r));
   return rows_.back();
+}
+
+void Report::check_rate(const std::string& group, const std::string& name, double observed, double expected,
+                        double below, double above, const std::string& why) {
+  if (why.empty())  // the rows' own text would hide that the bounds are unexplained
+    throw std::invalid_argument(fmt::format("verification rate '{}' / '{}' has no why", group, name));
+  const double lo = expected - below, hi = expected + above;
+  const std::string window = fmt::format("rate window [{:g}, {:g}] around the expected {:g}", lo, hi, expected);
+  check(group, name, observed, lo, Compare::AtLeast, fmt::format("{}: {}", window, why));
+  // The prefix tells a reader of a failing row where to look first.
+  const std::string upper = observed > hi ? "faster than theory: check the error norm (or whether the exact solution "
+                                            "lies in the discrete space)"
+                                          : "a rate above the window would mean a broken error norm or an exact "
+                                            "solution in the discrete space";
+  check(group, name, observed, hi, Compare::AtMost, fmt::format("{}; {}: {}", upper, window, why));
 }
 
 void Report::measure(std::string group, std::string name, double value, std::string what) {

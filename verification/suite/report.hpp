@@ -24,8 +24,17 @@ struct CheckRow {
 class Report {
  public:
   /// Adds a row; pass = measured <= threshold (AtMost) or >= (AtLeast). NaN fails.
+  /// `why` justifies the threshold: an empty one throws std::invalid_argument
+  /// (naming the group and the row), so that no row can go unexplained.
   const CheckRow& check(std::string group, std::string name, double measured, double threshold, Compare compare,
-                        std::string why = {});
+                        std::string why);
+  /// An observed convergence rate held from both sides: a row `>= expected - below`
+  /// and a row of the same name `<= expected + above`. A rate above the window is
+  /// as much a defect as one below it: the error is measured in another norm than
+  /// the one the theory bounds, or the exact solution lies in the discrete space
+  /// (the error is round-off and its "rate" noise). `why` justifies both bounds.
+  void check_rate(const std::string& group, const std::string& name, double observed, double expected, double below,
+                  double above, const std::string& why);
   /// Records a measured fact that has no pass/fail verdict (e.g. the condition
   /// number of the thesis' monomial Vandermonde, shown beside a checked quantity).
   void measure(std::string group, std::string name, double value, std::string what = {});

@@ -6,7 +6,8 @@
 //     every point by d; a translation tangent to a face moves it within its own
 //     plane, so the surface RMS is below d);
 //  3. a refinement sequence: Tet10 at three sizes against a Tet20 reference of a
-//     smooth static scene, the L2 error's rate >= p + 0.7 (asymptotically p + 1 = 3).
+//     smooth static scene, the L2 error's rate in [p + 0.7, p + 1.3] (asymptotically
+//     p + 1 = 3).
 // 1 and 2 use a clamped cube under its own weight. 3 needs a solution without
 // singularities: a box or a tube has 90-degree edges where clamped faces meet
 // (the Lame system's corner exponent there is ~1.4 for nu = 0.3, which caps the
@@ -48,6 +49,28 @@ constexpr const char* kTorus = R"({
   "boundary": [{"nodes": "inner", "motion": "fixed"}]
 })";
 
+// Every run records t = 0 and one requested time (the static solution at t = 1).
+constexpr int kRequestedStates = 2;
+
+// States a run recorded (RecordedRun::times is NaN where none was): a static
+// scene records its solution only when Newton converged (scene_runner.cpp), so
+// the count is the run's convergence, measured, not a flag.
+int recorded_states(const RecordedRun& run) {
+  int n = 0;
+  for (size_t i = 0; i < run.times.size(); ++i) n += std::isfinite(run.times[i]) && run.states[i].size() > 0;
+  return n;
+}
+
+// "converged": the states recorded against the states requested.
+bool check_recorded(Report& report, const std::string& group, const std::string& name, const RecordedRun& run) {
+  const int recorded = recorded_states(run);
+  report.check(group, name, recorded, kRequestedStates, Compare::AtLeast,
+               fmt::format("states recorded of the {} requested (t = 0 and the static solution, recorded only when "
+                           "Newton converged): {}",
+                           kRequestedStates, run.message.empty() ? "no message" : run.message));
+  return run.ok && recorded == kRequestedStates;
+}
+
 RecordedRun torus(int k, int order) {
   const Scene s = parse_scene(kTorus, "study_checks.cpp: torus",
                               {fmt::format("mesh.torus.cells=[{},{},{}]", k, 8 * k, 4 * k), fmt::format("mesh.order={}", order)});
@@ -56,8 +79,7 @@ RecordedRun torus(int k, int order) {
 
 void add_identity_checks(Report& report, const std::string& group) {
   const RecordedRun cube = record_run(parse_scene(kCube, "study_checks.cpp: clamped cube"), "", {1.0});
-  report.check(group, "clamped cube converged", cube.ok ? 1.0 : 0.0, 1.0, Compare::AtLeast, cube.message);
-  if (!cube.ok) return;
+  if (!check_recorded(report, group, "clamped cube converged", cube)) return;
   const ReferenceMeasure measure(cube, 0);
   const double sag = cube.states[1].cwiseAbs().maxCoeff();
   report.measure(group, "clamped cube max displacement", sag, "the sag under its weight");
@@ -100,16 +122,12 @@ void add_study_checks(Report& report) {
 
   // 3. Tet10 at k = 1, 2, 3 (cells k x 8k x 4k) against Tet20 at k = 4.
   const RecordedRun reference = torus(4, 3);
-  report.check(group, "torus Tet20 reference converged", reference.ok ? 1.0 : 0.0, 1.0, Compare::AtLeast,
-               reference.message);
-  if (!reference.ok) return;
+  if (!check_recorded(report, group, "torus Tet20 reference converged", reference)) return;
   const ReferenceMeasure measure(reference, 0);
   std::vector<double> h, e;
   for (const int k : {1, 2, 3}) {
     const RecordedRun run = torus(k, 2);
-    report.check(group, fmt::format("torus Tet10 k = {} converged", k), run.ok ? 1.0 : 0.0, 1.0, Compare::AtLeast,
-                 run.message);
-    if (!run.ok) return;
+    if (!check_recorded(report, group, fmt::format("torus Tet10 k = {} converged", k), run)) return;
     const StateError err = scene_error(run, measure, 0).back();
     h.push_back(1.0 / k);
     e.push_back(err.field.l2);
@@ -124,9 +142,12 @@ void add_study_checks(Report& report) {
   }
   const double n = static_cast<double>(h.size());
   const double rate = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-  report.check(group, "torus Tet10 refinement: L2 rate against the Tet20 reference", rate, 2.7, Compare::AtLeast,
-               "asymptotically p + 1 = 3 for a smooth solution; p + 0.7 leaves room for the coarsest size "
-               "(k = 1: one cell through the wall) and the reference's own error (O(h^4), ~1/10 of the finest)");
+  // Above: 3 + 0.3. The slope measures 2.93 (pairs 2.81 and 3.18; finer sizes
+  // gave 3.16-3.25, pre-asymptotic from above), so 3.3 holds even for the finest
+  // pair alone; a whole order faster (4, the reference's own rate) fails.
+  report.check_rate(group, "torus Tet10 refinement: L2 rate against the Tet20 reference", rate, 3.0, 0.3, 0.3,
+                    "asymptotically p + 1 = 3 for a smooth solution; p + 0.7 leaves room for the coarsest size "
+                    "(k = 1: one cell through the wall) and the reference's own error (O(h^4), ~1/10 of the finest)");
 }
 
 }  // namespace hofem::verification

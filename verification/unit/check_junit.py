@@ -25,18 +25,25 @@ def main(xml_path, json_path):
     suites = {s.get("name"): s for s in root.findall("testsuite")}
     if set(suites) != set(summary["groups"]):
         problems.append(f"suites {sorted(suites)} != groups {sorted(summary['groups'])}")
-    failed_rows = {(r["group"], r["name"]) for r in report["rows"] if not r["pass"]}
+    # Each group's rows in order: a rate's two rows share a name (Report::check_rate),
+    # so the testcases are matched to the rows by position, not by name.
+    rows_of = {}
+    for r in report["rows"]:
+        rows_of.setdefault(r["group"], []).append(r)
     cases = 0
     for name, suite in suites.items():
         group = summary["groups"].get(name, {})
         if int(suite.get("tests", -1)) != group.get("checks") or int(suite.get("failures", -1)) != group.get("failed"):
             problems.append(f"suite {name}: counts differ from the JSON")
-        for case in suite.findall("testcase"):
+        for k, case in enumerate(suite.findall("testcase")):
             cases += 1
+            row = rows_of.get(name, [])[k] if k < len(rows_of.get(name, [])) else None
             if case.get("classname") != name or not case.get("name"):
                 problems.append(f"suite {name}: testcase without its group or name")
             failure = case.find("failure")
-            if (failure is not None) != ((name, case.get("name")) in failed_rows):
+            if row is None or row["name"] != case.get("name"):
+                problems.append(f"{name} | {case.get('name')}: not the JSON's row at position {k}")
+            elif (failure is not None) != (not row["pass"]):
                 problems.append(f"{name} | {case.get('name')}: <failure> does not match the row's verdict")
             if failure is not None and not ("measured" in failure.get("message", "") and "threshold" in failure.get("message", "")):
                 problems.append(f"{name} | {case.get('name')}: failure message lacks measured/threshold")

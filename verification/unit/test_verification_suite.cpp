@@ -5,6 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
 namespace hofem::verification {
 namespace {
 
@@ -58,10 +63,10 @@ TEST(VerificationJunit, FailuresCarryMeasuredThresholdAndWhy) {
 // and the JSON summary counts it.
 TEST(VerificationReport, CountsFailuresAndRejectsNaN) {
   Report r;
-  r.check("g", "ok", 1.0, 2.0, Compare::AtMost);
-  r.check("g", "too big", 3.0, 2.0, Compare::AtMost);
-  r.check("g", "nan", std::nan(""), 2.0, Compare::AtMost);
-  r.check("h", "at least", 1.0, 2.0, Compare::AtLeast);
+  r.check("g", "ok", 1.0, 2.0, Compare::AtMost, "test");
+  r.check("g", "too big", 3.0, 2.0, Compare::AtMost, "test");
+  r.check("g", "nan", std::nan(""), 2.0, Compare::AtMost, "test");
+  r.check("h", "at least", 1.0, 2.0, Compare::AtLeast, "test");
   EXPECT_EQ(r.failures(), 3);
   const auto j = r.to_json();
   EXPECT_EQ(j["summary"]["failed"], 3);
@@ -73,9 +78,9 @@ TEST(VerificationReport, CountsFailuresAndRejectsNaN) {
 // measurements, with a summary that counts only them.
 TEST(VerificationReport, OnlyKeepsOneGroupPrefix) {
   Report r;
-  r.check("partition.balance", "a", 0.0, 1.0, Compare::AtMost);
-  r.check("partition.cut", "b", 2.0, 1.0, Compare::AtMost);
-  r.check("quadrature.exactness", "c", 0.0, 1.0, Compare::AtMost);
+  r.check("partition.balance", "a", 0.0, 1.0, Compare::AtMost, "test");
+  r.check("partition.cut", "b", 2.0, 1.0, Compare::AtMost, "test");
+  r.check("quadrature.exactness", "c", 0.0, 1.0, Compare::AtMost, "test");
   r.measure("partition.seconds", "t", 0.1);
   r.measure("embedded.fig4", "t", 0.2);
   const auto j = r.only("partition").to_json();
@@ -84,6 +89,52 @@ TEST(VerificationReport, OnlyKeepsOneGroupPrefix) {
   EXPECT_EQ(j["summary"]["checks"], 2);
   EXPECT_EQ(j["summary"]["failed"], 1);
   EXPECT_FALSE(j["summary"]["groups"].contains("quadrature.exactness"));
+}
+
+// Every row says why its threshold is what it is: a row without a reason is
+// refused, naming the row, and adds nothing.
+TEST(VerificationReport, RefusesARowWithoutWhy) {
+  Report r;
+  try {
+    r.check("mms.converged", "linear|tet|p1", 0.5, 1.0, Compare::AtMost, "");
+    FAIL() << "an empty why was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("mms.converged"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("linear|tet|p1"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(r.check_rate("mms.rate_l2", "p1", 2.0, 2.0, 0.15, 0.35, ""), std::invalid_argument);
+  EXPECT_TRUE(r.rows().empty());
+}
+
+// A rate is held from both sides: two rows of the same name, >= expected - below
+// and <= expected + above; too fast fails as much as too slow, and says where to look.
+TEST(VerificationReport, CheckRateHoldsBothSides) {
+  const auto rows_of = [](double observed) {
+    Report r;
+    r.check_rate("mms.rate_l2", "p3", observed, 4.0, 0.15, 0.35, "O(h^4)");
+    return r.rows();
+  };
+  const std::vector<CheckRow> inside = rows_of(4.18);
+  ASSERT_EQ(inside.size(), 2u);
+  EXPECT_EQ(inside[0].name, inside[1].name);
+  EXPECT_EQ(inside[0].compare, Compare::AtLeast);
+  EXPECT_DOUBLE_EQ(inside[0].threshold, 3.85);
+  EXPECT_EQ(inside[1].compare, Compare::AtMost);
+  EXPECT_DOUBLE_EQ(inside[1].threshold, 4.35);
+  EXPECT_TRUE(inside[0].pass && inside[1].pass);
+  EXPECT_NE(inside[1].why.find("O(h^4)"), std::string::npos);
+
+  const std::vector<CheckRow> fast = rows_of(5.0);  // e.g. an L2 error reported as H1
+  EXPECT_TRUE(fast[0].pass);
+  EXPECT_FALSE(fast[1].pass);
+  EXPECT_TRUE(fast[1].why.starts_with("faster than theory: check the error norm")) << fast[1].why;
+
+  const std::vector<CheckRow> slow = rows_of(3.5);
+  EXPECT_FALSE(slow[0].pass);
+  EXPECT_TRUE(slow[1].pass);
+
+  const std::vector<CheckRow> nan = rows_of(std::nan(""));
+  EXPECT_FALSE(nan[0].pass || nan[1].pass);
 }
 
 }  // namespace
