@@ -28,6 +28,7 @@ nlohmann::json default_scene_json() {
   j["dt"] = d.dt;
   j["duration"] = s.duration;
   j["solver"] = {{"linear", d.solver.name()},
+                 {"krylov_max_iterations", d.solver.krylov.max_iterations},
                  {"newton_rtol", d.newton.rtol},
                  {"newton_max_iterations", d.newton.max_iterations},
                  {"eisenstat_walker", d.newton.eisenstat_walker},

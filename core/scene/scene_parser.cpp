@@ -244,7 +244,7 @@ Scene parse_validated(const json& j, const std::string& origin) {
     d.lumping = root.at("lumping").choice({"row-sum", "hrz"}) == "hrz" ? MassLumping::HRZ : MassLumping::RowSum;
   if (root.has("solver")) {
     const Field sv = root.at("solver");
-    sv.keys({"linear", "krylov_iterations", "setup_reuse", "distributed", "newton_rtol",
+    sv.keys({"linear", "krylov_iterations", "krylov_max_iterations", "setup_reuse", "distributed", "newton_rtol",
              "newton_max_iterations", "eisenstat_walker", "hessian"});
     if (sv.has("linear")) {
       std::vector<std::string> names = linear_solver_names();
@@ -261,6 +261,8 @@ Scene parse_validated(const json& j, const std::string& origin) {
                               "preconditioner), not \"{}\"",
                               d.solver.name()));
     }
+    if (sv.has("krylov_max_iterations"))
+      d.solver.krylov.max_iterations = sv.at("krylov_max_iterations").integer(1, 100000);
     if (sv.has("setup_reuse")) {  // "never", "amortised" or a growth factor >= 1 (solver_spec.hpp)
       const Field f = sv.at("setup_reuse");
       if (f.raw().is_number()) {

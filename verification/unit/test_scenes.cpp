@@ -123,6 +123,17 @@ TEST(Scenes, HessianKeyChoosesTheProjectedHessian) {
             std::string::npos);
 }
 
+// solver.krylov_max_iterations caps every Krylov solve of the run (5000 unless set).
+TEST(Scenes, KrylovMaxIterationsCapsTheSolves) {
+  EXPECT_EQ(parse_scene(kValid, "t.json").dynamics.solver.krylov.max_iterations, 5000);
+  const std::string at = R"("boundary":)";
+  EXPECT_EQ(parse_scene(with(at, R"("solver": {"krylov_max_iterations": 400}, "boundary":)"), "t.json")
+                .dynamics.solver.krylov.max_iterations,
+            400);
+  EXPECT_NE(error_of(with(at, R"("solver": {"krylov_max_iterations": 0}, "boundary":)")).find("krylov_max_iterations"),
+            std::string::npos);
+}
+
 TEST(Scenes, BuiltInScenesAreValid) {
   const std::filesystem::path dir = std::filesystem::path(HOFEM_SOURCE_DIR) / "scripts" / "scenes";
   int count = 0;
