@@ -4,7 +4,7 @@ nu = 0.48, two turns over 2 s held to 3 s, the seed's resolutions, a
 637 k-unknown Tet10 reference), and the
 two tables of the full claims page that set Table 1 beside hofem's and take
 its central ratio apart. The time ratios themselves are claims_longva's
-table1_rows, judged here at seed_threshold."""
+table1_rows, judged here at SEED_THRESHOLD."""
 import math
 
 from claims_check import check
@@ -17,44 +17,43 @@ SEED_THRESHOLD = 0.015  # Longva et al. 2020 §6.2: surface RMS at the final ste
 SEED_TET10_RUN = "tet10-16"
 
 
-def seed_threshold(tc):
-    """The surface RMS at which the seed-size rows compare the families: the
-    seed's own 0.015 m (Longva et al. 2020 §6.2, "a representative threshold"),
-    at which its Tet10 FEM needed 17,695 elements.
-
-    The scene is the one where that number means something. At half a turn
-    over 16 m (the first scene run at this size) every run of every family was
-    under 0.015 m (Tet10 at the seed's resolution 1.1e-4 m), so the threshold
-    had to be placed by the seed's rule instead (the error of hofem's Tet10 at
-    the seed's Tet10 resolution), below the finite cells' own embedded
-    faceting (~3e-4 m). The seed's 0.015 m belongs to a stronger deformation,
-    "a characteristic deformation in the middle" (§6.2): two full turns over
-    2 s, held to 3 s, where the tube's middle buckles. There hofem's Newton on
-    the Hessian as assembled stalls (at dt = 1/30 from t = 2.8 s; at dt = 1/60
-    Tet10 [3, 24, 138] spent > 8 min in one step at t = 2.62 s: CG + p-multigrid
-    on a nearly singular Hessian). The PSD-projected Hessian from the first
-    iteration (solver.hessian = projected), as the seed needed for its finest
-    Tet4 run, gets through but costs ~3x a step (23 s against 6.6 s at
-    [3, 24, 138]: 4-5 Newton iterations instead of 3, and project_psd's 9 x 9
-    eigensolves at every point, 21 % of the samples in perf). So the study runs
-    at dt = 1/60 with the Hessian as assembled and CG capped at 400 iterations
-    (solver.krylov_max_iterations; a step's solves take ~40): a solve that hits
-    the cap takes its direction from the projected Hessian, in the steps near
-    the buckling only. tc is unused: the threshold does not depend on the runs
-    (kept for the callers' signature)."""
-    return SEED_THRESHOLD
+# SEED_THRESHOLD is the surface RMS at which the seed-size rows compare the
+# families: the seed's own 0.015 m (Longva et al. 2020 §6.2, "a representative threshold"),
+# at which its Tet10 FEM needed 17,695 elements.
+#
+# The scene is the one where that number means something. At half a turn
+# over 16 m (the first scene run at this size) every run of every family was
+# under 0.015 m (Tet10 at the seed's resolution 1.1e-4 m), so the threshold
+# had to be placed by the seed's rule instead (the error of hofem's Tet10 at
+# the seed's Tet10 resolution), below the finite cells' own embedded
+# faceting (~3e-4 m). The seed's 0.015 m belongs to a stronger deformation,
+# "a characteristic deformation in the middle" (§6.2): two full turns over
+# 2 s, held to 3 s, where the tube's middle buckles. There hofem's Newton on
+# the Hessian as assembled stalls (at dt = 1/30 from t = 2.8 s; at dt = 1/60
+# Tet10 [3, 24, 138] spent > 8 min in one step at t = 2.62 s: CG + p-multigrid
+# on a nearly singular Hessian). The PSD-projected Hessian from the first
+# iteration (solver.hessian = projected), as the seed needed for its finest
+# Tet4 run, gets through but costs ~3x a step (23 s against 6.6 s at
+# [3, 24, 138]: 4-5 Newton iterations instead of 3, and project_psd's 9 x 9
+# eigensolves at every point, 21 % of the samples in perf). So the study runs
+# at dt = 1/60 with the Hessian as assembled and CG capped at 400 iterations
+# (solver.krylov_max_iterations; a step's solves take ~40): a solve that hits
+# the cap takes its direction from the projected Hessian, in the steps near
+# the buckling only. Measured once so far (Tet10 [3, 24, 138]): ~6 s a step to
+# t = 2.6 s, and the step after t = 2.617 s still running after 80 s: the cap
+# bounds each solve but does not yet take the run through the buckling.
 
 
 def table1_seed_rows(R):
     """Table 1 at the seed's size (scripts/studies/full/twisting-cylinder-seed.json:
     16 m long, radii 0.5 / 1 m, the seed's element counts: Tet10 [2, 16, 92] is
     17,664 elements / 29,600 nodes against the seed's 17.7 k / 31.8 k, Hex20 FCM
-    [6, 6, 56] 2,016 cells), at the final step, judged at seed_threshold.
+    [6, 6, 56] 2,016 cells), at the final step, judged at SEED_THRESHOLD.
     Besides the time ratios: the reference's time over Hex20 FCM's (the seed:
     21,157 ms, 59x) and the resolution each family needs to reach the threshold
     (Table 1's counts)."""
     tc = R["studies"]["twisting-cylinder-seed"]  # KeyError: not run (the group is skipped)
-    T = seed_threshold(tc)
+    T = SEED_THRESHOLD
     tet10 = next((r for r in tc["runs"] if r["name"] == SEED_TET10_RUN and r["ok"]), None)
     rows = [{"skipped": f"table1.seed.tet10_error_at_seed_resolution: {SEED_TET10_RUN} has not run"}] if tet10 is None else [{
         "id": "table1.seed.tet10_error_at_seed_resolution", "source": "Longva et al. 2020, Table 1, Fig. 7",
@@ -140,16 +139,16 @@ def table1_seed_rows(R):
 
 
 def seed_study(R):
-    """The seed-size study and its threshold (seed_threshold), or (None, None)
+    """The seed-size study and its threshold (SEED_THRESHOLD), or (None, None)
     while the study has not been run."""
     tc = R["studies"].get("twisting-cylinder-seed")
-    return (tc, seed_threshold(tc)) if tc else (None, None)
+    return (tc, SEED_THRESHOLD) if tc else (None, None)
 
 
 def table1_side_by_side(R):
     """Table 1 in the seed's form (elements, nodes, ms per step at the
     threshold) beside hofem's at the seed's size: each family's counts and time
-    log-interpolated between the two runs that bracket seed_threshold (as
+    log-interpolated between the two runs that bracket SEED_THRESHOLD (as
     time_at), or the bound its ladder gives ("at most" / "more than");
     the reference as run. Markdown lines; [] when the study has not been run."""
     tc, T = seed_study(R)
@@ -157,7 +156,7 @@ def table1_side_by_side(R):
         return []
     lines = ["", "Table 1 as the seed printed it (Longva et al. 2020 §6.2; 2 x 14 Xeon cores, direct solvers) and as "
              f"hofem measured it (2 cores, each family's `auto` solver; at the final step, surface RMS = {T:.3g} m "
-             "as in the seed (claims_table1_seed.seed_threshold); log-interpolated between the bracketing runs):", "",
+             "as in the seed (claims_table1_seed.SEED_THRESHOLD); log-interpolated between the bracketing runs):", "",
              "| family | seed: elements | seed: nodes | seed: ms / step | hofem: elements | hofem: nodes "
              "| hofem: ms / step | how | hofem runs |", "|---|---:|---:|---:|---:|---:|---:|---|---|"]
     for family, (elements, nodes) in TABLE1_COUNTS.items():

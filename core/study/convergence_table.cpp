@@ -27,7 +27,7 @@ struct Column {
 json optional_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
 
 // The manufactured problem is posed without dimensions: the unit cube, E = 1, u*
-// of amplitude 1 (linear) or 0.1 (Neo-Hookean); lengths are in cube sides.
+// of amplitude 1 (linear) or 0.1 (the hyperelastic materials: mms_displacement_scale); lengths are in cube sides.
 constexpr Column kColumns[] = {
     {"problem", "-", "manufactured problem: the material (material_names(); linear: linear elasticity)",
      [](const ConvergenceRow& r) { return json(r.problem); }},

@@ -20,8 +20,9 @@ import fnmatch
 import json
 import os
 import re
-import subprocess
 import sys
+
+import ctest_list
 
 # A word that ends in one of these is a file name, whatever its prefix.
 FILE_EXTENSIONS = {"c", "cc", "cpp", "h", "hpp", "json", "jsonl", "md", "py", "sh", "txt", "msh", "yml", "yaml",
@@ -63,26 +64,14 @@ def test_names(words, prefixes):
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("docs", nargs="+", help="Markdown files to check")
-    ap.add_argument("--build", help="build directory to run ctest in")
-    ap.add_argument("--ctest", default="ctest", help="the ctest executable")
-    ap.add_argument("--json", help="read ctest --show-only=json-v1 output from this file instead")
+    ctest_list.add_arguments(ap)
     ap.add_argument("--groups", help="reports/verification.json: its row groups are not test names")
     a = ap.parse_args(argv)
-    if bool(a.build) == bool(a.json):
-        ap.error("give either --build DIR or --json FILE")
-    if a.json:
-        with open(a.json) as f:
-            doc = json.load(f)
-    else:
-        run = subprocess.run([a.ctest, "--show-only=json-v1"], cwd=a.build, capture_output=True, text=True)
-        if run.returncode != 0:
-            print(f"check_doc_test_names: FAIL: ctest --show-only=json-v1 in {a.build}: exit {run.returncode}: {run.stderr}")
-            return 1
-        doc = json.loads(run.stdout)
-    tests = [t["name"] for t in doc.get("tests", [])]
-    if not tests:  # a wrong directory would pass every document vacuously
-        print("check_doc_test_names: FAIL: no tests listed")
+    entries, error = ctest_list.load_tests(ap, a, "check_doc_test_names")
+    if error:
+        print(error)
         return 1
+    tests = [t["name"] for t in entries]
     known = set(tests)
     prefixes = {t.split(".")[0] for t in tests if "." in t}
     groups = set()

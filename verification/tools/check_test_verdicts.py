@@ -17,9 +17,9 @@ Prints "check_test_verdicts: N tests, 0 judged other than by exit status" and
 exits 0, or "check_test_verdicts: FAIL: ..." with each test and property, exit 1.
 """
 import argparse
-import json
-import subprocess
 import sys
+
+import ctest_list
 
 GTEST_SKIP = ["\\[  SKIPPED \\]"]  # gtest_discover_tests' value, as ctest's JSON lists it
 
@@ -45,25 +45,11 @@ def offending(test):
 
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--build", help="build directory to run ctest in")
-    ap.add_argument("--ctest", default="ctest", help="the ctest executable")
-    ap.add_argument("--json", help="read ctest --show-only=json-v1 output from this file instead")
+    ctest_list.add_arguments(ap)
     a = ap.parse_args(argv)
-    if bool(a.build) == bool(a.json):
-        ap.error("give either --build DIR or --json FILE")
-    if a.json:
-        with open(a.json) as f:
-            doc = json.load(f)
-    else:
-        run = subprocess.run([a.ctest, "--show-only=json-v1"], cwd=a.build, capture_output=True, text=True)
-        if run.returncode != 0:
-            print(f"check_test_verdicts: FAIL: ctest --show-only=json-v1 in {a.build}: exit {run.returncode}: {run.stderr}")
-            return 1
-        doc = json.loads(run.stdout)
-    tests = doc.get("tests", [])
-    # An empty list would pass vacuously (a wrong directory, a broken ctest).
-    if not tests:
-        print("check_test_verdicts: FAIL: no tests listed")
+    tests, error = ctest_list.load_tests(ap, a, "check_test_verdicts")
+    if error:
+        print(error)
         return 1
     bad = [(t["name"], found) for t in tests if (found := offending(t))]
     if bad:
