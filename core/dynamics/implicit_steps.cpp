@@ -202,6 +202,7 @@ void TimeStepper::step_implicit_euler(StepReport& report, double h) {
   stats.newton_iterations += r.iterations;
   stats.linear_iterations += r.linear_iterations;
   for (const NewtonIteration& it : r.history) {
+    report.projected_directions += it.projected;
     stats.projected_directions += it.direction == "projected";
     stats.shifted_directions += it.direction == "shifted";
     stats.gradient_directions += it.direction == "gradient";

@@ -81,6 +81,7 @@ void TimeStepper::implicit_euler_adaptive(StepReport& report, double h, int dept
   report.linear_iterations += attempt.linear_iterations;
   report.setups += attempt.setups;
   report.setup_reuses += attempt.setup_reuses;
+  report.projected_directions += attempt.projected_directions;
   report.newton_residual = attempt.newton_residual;
   if (attempt.ok) return;
   if (depth >= kMaxHalvings) {

@@ -24,6 +24,9 @@ struct StepReport {
   int setups = 0;        ///< the linear solver's factorisations / preconditioner set-ups
   int setup_reuses = 0;  ///< matrices an iterative solver took on an earlier set-up
   double newton_residual = 0.0;
+  /// Newton iterations whose direction came from the PSD-projected Hessian
+  /// (the Hessian as assembled refused, or solver.hessian = projected).
+  int projected_directions = 0;
   double seconds = 0.0;
 };
 

@@ -243,7 +243,7 @@ void SceneRun::run_static(std::vector<PrescribedMotion> motions) {
 json step_row(int k, const StepReport& r) {
   return {{"step", k}, {"t", r.time}, {"ok", r.ok}, {"newton_iterations", r.newton_iterations},
           {"linear_iterations", r.linear_iterations}, {"setups", r.setups}, {"setup_reuses", r.setup_reuses},
-          {"newton_residual", r.newton_residual},
+          {"newton_residual", r.newton_residual}, {"projected_directions", r.projected_directions},
           {"seconds", r.seconds}};
 }
 

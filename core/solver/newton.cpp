@@ -7,6 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <limits>
 
 namespace hofem {
@@ -29,6 +32,25 @@ double forcing_term(const NewtonOptions& opt, int it, double g_norm, double g_pr
   return std::clamp(eta, opt.linear_rtol, opt.ew_eta_max);
 }
 
+// HOFEM_NEWTON_TRACE=1: one line per Newton iteration on stderr (residual,
+// direction, linear iterations, step), for diagnosing a slow step of a long
+// run without a debugger. Read once; off unless set.
+bool trace_enabled() {
+  static const bool on = [] {
+    const char* env = std::getenv("HOFEM_NEWTON_TRACE");
+    return env != nullptr && std::strcmp(env, "0") != 0;
+  }();
+  return on;
+}
+
+void trace(int it, const NewtonIteration& rec, double tol, const std::string& note) {
+  if (!trace_enabled()) return;
+  fmt::print(stderr, "newton {:3d}: |g| = {:.3e} (tol {:.3e}) {} linear {} step {:.3g} shift {:.2e}{}{}\n", it,
+             rec.residual, tol, rec.direction, rec.linear_iterations, rec.step, rec.shift, note.empty() ? "" : ": ",
+             note);
+  std::fflush(stderr);
+}
+
 }  // namespace
 
 NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, LinearSolver& solver,
@@ -46,6 +68,7 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
   double g_prev = 0.0, eta = 0.0;
   // Ends the iteration `it` unconverged with `message`, recording it.
   const auto fail = [&](int it, NewtonIteration& rec, std::string message) {
+    trace(it, rec, tol, message);
     result.message = std::move(message);
     result.final_residual = rec.residual;
     result.iterations = it;
@@ -91,6 +114,7 @@ NewtonResult newton_minimize(NonlinearProblem& problem, Eigen::VectorXd& u, Line
     if (!step.accepted)
       return fail(it, rec, fmt::format("line search failed at iteration {} (|g| = {:.3e})", it, rec.residual));
     rec.step = step.step;
+    trace(it, rec, tol, "");
     result.history.push_back(rec);
     u = u_trial;
     if (step.gradient_known) {  // the line search already evaluated the gradient here
