@@ -7,6 +7,9 @@
 //                       symplectic ones;
 //  - dynamics.energy:   bounded energy (no drift) for symplectic Euler and leapfrog
 //                       over 4000 steps, monotone decay for implicit Euler;
+//  - dynamics.stability: each explicit integrator's stable-dt estimate against
+//                       its published h omega limit over the exact omega_max, and
+//                       runs just inside (bounded) and just outside (growing);
 //  - dynamics.mass:     lumped masses (row-sum / HRZ) positive and summing to rho V.
 #include "report.hpp"
 
