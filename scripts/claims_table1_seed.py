@@ -180,6 +180,35 @@ def table1_side_by_side(R):
     return lines
 
 
+def table1_at_seed_resolution(R):
+    """Table 1 at the seed's resolutions: for each family (and the solver and
+    quadrature variants), the run whose element count is nearest the seed's
+    (in ratio), with its counts, fraction of the seed's unknowns, time per step
+    and surface RMS at the final step - the seed's experiment at its size,
+    whatever error that gives in hofem's scene (information beside the
+    threshold comparison, not claims). Markdown lines; [] when not run."""
+    tc, T = seed_study(R)
+    if T is None:
+        return []
+    lines = ["", "Table 1 at the seed's resolutions: each family's run nearest the seed's element count (finite cells: "
+             "active cells), its time per step and its surface RMS at the final step:", "",
+             "| family | seed: elements | seed: nodes | seed: ms / step | hofem run | elements | nodes "
+             "| of the seed's unknowns | ms / step | surface RMS [m] |", "|---|---:|---:|---:|---|---:|---:|---:|---:|---:|"]
+    families = sorted({r["family"] for r in tc["runs"] if r["ok"]}, key=lambda f: (f.split(",")[0], f))
+    for family in families:
+        base = family.split(",")[0]
+        if base not in TABLE1_COUNTS:
+            continue
+        elements, nodes = TABLE1_COUNTS[base]
+        runs = [r for r in tc["runs"] if r["ok"] and r["family"] == family]
+        r = min(runs, key=lambda r: abs(math.log((r.get("active_cells") or r["elements"]) / elements)))
+        lines.append(f"| {family} | {elements:,} | {nodes:,} | {TABLE1_MS[base]:,.0f} | {r['name']} "
+                     f"| {r.get('active_cells') or r['elements']:,} | {r['unknowns'] // 3:,} "
+                     f"| {r['unknowns'] / TABLE1_UNKNOWNS[base]:.2f} | {r['time_per_step_median'] * 1e3:,.0f} "
+                     f"| {r['metric']:.3g} |")
+    return lines
+
+
 TABLE1_EXPLAINED = ("Hex20 FCM", "Tet10 FEM", "Hex20 FCM, CHOLMOD", "Tet10 FEM, CHOLMOD", "Hex20 FCM, degree 4")
 
 
