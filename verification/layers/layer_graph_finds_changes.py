@@ -1,4 +1,4 @@
-"""scripts/layer_graph.py must fail on each kind of disagreement: a layer
+"""scripts/checks/layer_graph.py must fail on each kind of disagreement: a layer
 including a layer it does not link, a linked layer no longer included, a header
 outside parallel/ including <mpi.h>, and a README graph that is not the
 targets'. Each is made on a copy (the real tree is read, never changed)."""

@@ -21,8 +21,9 @@ import pathlib
 import re
 import sys
 
-BEGIN = "<!-- layer graph: written by scripts/layer_graph.py --write from the CMake targets; ctest layers.graph checks it -->"
+BEGIN = "<!-- layer graph: written by scripts/checks/layer_graph.py --write from the CMake targets; ctest layers.graph checks it -->"
 END = "<!-- end of layer graph -->"
+ROOT = pathlib.Path(__file__).resolve().parents[2]  # the repository (this file is scripts/checks/layer_graph.py)
 
 
 def read_declared(path):
@@ -96,8 +97,8 @@ def render(graph):
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--layers", required=True)
-    p.add_argument("--readme", default=str(pathlib.Path(__file__).resolve().parent.parent / "README.md"))
-    p.add_argument("--core", default=str(pathlib.Path(__file__).resolve().parent.parent / "core"))
+    p.add_argument("--readme", default=str(ROOT / "README.md"))
+    p.add_argument("--core", default=str(ROOT / "core"))
     p.add_argument("--write", action="store_true")
     a = p.parse_args()
     declared = read_declared(a.layers)
@@ -115,7 +116,7 @@ def main():
                 readme.write_text(text[:start] + block + text[stop:])
                 print(f"layer_graph: rewrote the graph in {readme}")
             else:
-                problems.append(f"{readme}: the layer graph differs from the CMake targets (scripts/layer_graph.py --write)")
+                problems.append(f"{readme}: the layer graph differs from the CMake targets (scripts/checks/layer_graph.py --write)")
     for problem in problems:
         print(f"layer_graph: {problem}", file=sys.stderr)
     if problems:
