@@ -1,7 +1,7 @@
 #pragma once
 // What one rank of a distributed run holds, sends and spends: the
 // per-rank figures behind the scaling report and the sizing model
-// (scripts/mpi_model.py). Gathered so that rank 0 can write them all.
+// (scripts/mpi/mpi_model.py). Gathered so that rank 0 can write them all.
 //
 // The figures are plain counts and times, filled by the layers that know them
 // (solver/rank_figures.hpp: the mesh piece, the DOF rows, the assembler and

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Strong scaling of `hofem mms --distributed` over MPI ranks (scripts/bench-mpi).
 
-    /usr/bin/python3 scripts/mpi_scaling.py OUT_DIR RANKS...
+    /usr/bin/python3 scripts/mpi/mpi_scaling.py OUT_DIR RANKS...
 
 For each case (Neo-Hookean manufactured solution, P1-P3 tets) and rank count,
 runs `mpirun -np K build/bin/hofem mms --distributed --json` three times and

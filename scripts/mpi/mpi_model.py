@@ -2,7 +2,7 @@
 """A sizing model for distributed runs past this machine, from the
 1- and 2-rank measurements of scripts/bench-mpi (reports/mpi/scaling.json).
 
-    /usr/bin/python3 scripts/mpi_model.py [reports/mpi]
+    /usr/bin/python3 scripts/mpi/mpi_model.py [reports/mpi]
 
 Writes reports/mpi/model.md and model.json: per-rank memory, halo volume, AMG
 set-up cost and linear-solve time against rank count for P1-P3 up to 1e9
@@ -164,7 +164,7 @@ def main():
                                                     "amg_setup_against_ranks_1e8": setup,
                                                     "assumptions": assumptions}, indent=1))
     L = ["# Sizing distributed runs", "",
-         "Made by `scripts/mpi_model.py` from `reports/mpi/scaling.json` (`scripts/bench-mpi`: the Neo-Hookean",
+         "Made by `scripts/mpi/mpi_model.py` from `reports/mpi/scaling.json` (`scripts/bench-mpi`: the Neo-Hookean",
          "manufactured solution on 1 and 2 ranks of this 2-core, 24 GiB machine, one thread per rank, medians of 3).",
          "Each rank keeps only its piece of the mesh (its elements, owned and ghost nodes); pattern, element",
          "data, vectors, hypre's matrix and AMG hierarchy are per piece. Two input paths: the cube of",
