@@ -7,7 +7,7 @@ relative links only). In this order:
    the main job's seconds per stage (run_timings.json);
 2. the verification summary: the failed checks first (measured, threshold,
    why), then the groups' counts, then each group's checks in a <details>;
-3. the seeds' claims table (paper_claims.json, scripts/paper_claims.py);
+3. the seeds' claims table (paper_claims.json, scripts/claims/paper_claims.py);
 4. each study's work-precision plot and summary (studies/NAME/);
 5. the benchmark headline figures (scripts/report_headlines.py);
 6. every other PNG under the directory, in a grid.
@@ -26,6 +26,8 @@ import time
 import urllib.parse
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# claims_size describes a claims row's size; it lives with the claims table in scripts/claims/.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "claims"))
 from claims_size import describe as describe_size  # noqa: E402
 from report_headlines import fastest_solver_rows, floor_rows, scene_rows, time_to_error_rows  # noqa: E402
 from report_html import InputError, esc, load_json, markdown, missing, num, table  # noqa: E402
@@ -187,7 +189,7 @@ def claims_section(reports, shown, errors):
     full = os.path.isfile(os.path.join(reports, "full", "paper_claims.md"))
     out = [f"<p><strong>{agree} of {len(rows)} rows agree</strong> with the seeds "
            f"({link_if_present(reports, 'paper_claims.md')}; each criterion was written before its measurement, "
-           "scripts/paper_claims.py)"
+           "scripts/claims/paper_claims.py)"
            + (f"; the full-size studies' rows: {link_if_present(reports, 'full/paper_claims.md')}" if full else "")
            + ".</p>"]
     cells = [(esc(r["id"]), esc(r["source"]), esc(r["quantity"]), num(r["paper_value"]), num(r["measured"]),

@@ -12,9 +12,9 @@ crosses the threshold) are listed as skipped with the reason; checks of a study'
 own reference are kept apart from the claims ("reference_checks").
 
 Sources: Longva et al. 2020, "Higher-order finite elements for embedded
-simulation" (Table 1, §6.2-6.5, Fig. 10: scripts/claims_longva.py), and the
+simulation" (Table 1, §6.2-6.5, Fig. 10: scripts/claims/claims_longva.py), and the
 thesis on a high-order FEM simulator (§5.2 Fig. 9, §5.3.1 Figs. 10-11, §5.3.2
-Figs. 12-13, §5.4 Fig. 14: scripts/claims_thesis.py). Each row's function says
+Figs. 12-13, §5.4 Fig. 14: scripts/claims/claims_thesis.py). Each row's function says
 how its experiment is scaled to this machine.
 
 Usage: paper_claims.py [REPORTS] [--out DIR] [--full] (default REPORTS and DIR:
@@ -73,7 +73,7 @@ def timings(r):
 
 def markdown(rows, skipped=(), reference_checks=(), explanation=()):
     lines = ["# The seeds' numbers beside hofem's", "",
-             "Written by `scripts/paper_claims.py` from the reports (size: the smallest fraction of the seed's "
+             "Written by `scripts/claims/paper_claims.py` from the reports (size: the smallest fraction of the seed's "
              "unknowns or elements among the runs a row reads, \"seed's size\" at >= 0.5; the parts are in "
              "paper_claims.json); the criterion of each row was written "
              "before the measurement it judges. " + f"{sum(r['agrees'] for r in rows)} of {len(rows)} rows agree.", "",
