@@ -1,4 +1,4 @@
-"""The benchmark headline figures of reports/index.html (scripts/report_index.py):
+"""The benchmark headline figures of reports/index.html (scripts/report/report_index.py):
 the dozen numbers a reader of the main job's run looks for first, taken from the
 files the run wrote, each with the file it came from.
 
@@ -19,9 +19,12 @@ reports with the file's name."""
 import glob
 import os
 import statistics
+import sys
 
-from bench_json import base_name, representatives
-from report_html import load_json
+# bench_json (reading Google Benchmark JSON) is shared with the plots; it is in scripts/.
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from bench_json import base_name, representatives  # noqa: E402
+from report_html import load_json  # noqa: E402
 
 UNIT_SECONDS = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 

@@ -1,4 +1,4 @@
-"""HTML building blocks of reports/index.html (scripts/report_index.py): escaped
+"""HTML building blocks of reports/index.html (scripts/report/report_index.py): escaped
 text, tables, number formatting, a small Markdown subset (the studies'
 summary.md), and reading the JSON inputs so that a missing file and a broken
 one are told apart. Standard library only (/usr/bin/python3, no network).

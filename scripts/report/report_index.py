@@ -9,7 +9,7 @@ relative links only). In this order:
    why), then the groups' counts, then each group's checks in a <details>;
 3. the seeds' claims table (paper_claims.json, scripts/claims/paper_claims.py);
 4. each study's work-precision plot and summary (studies/NAME/);
-5. the benchmark headline figures (scripts/report_headlines.py);
+5. the benchmark headline figures (scripts/report/report_headlines.py);
 6. every other PNG under the directory, in a grid.
 
 A section whose input is absent says "not produced by this run"; an input that
@@ -27,7 +27,7 @@ import urllib.parse
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 # claims_size describes a claims row's size; it lives with the claims table in scripts/claims/.
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "claims"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "claims"))
 from claims_size import describe as describe_size  # noqa: E402
 from report_headlines import fastest_solver_rows, floor_rows, scene_rows, time_to_error_rows  # noqa: E402
 from report_html import InputError, esc, load_json, markdown, missing, num, table  # noqa: E402
@@ -298,7 +298,7 @@ def build_page(reports):
             "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
             f"<title>hofem: the main job's report</title><style>{CSS}</style></head><body>\n"
             "<h1>hofem: the main job's report</h1>\n"
-            "<p>Written by scripts/report_index.py from the files beside this page. "
+            "<p>Written by scripts/report/report_index.py from the files beside this page. "
             "Images: <span id=\"image-check\">not checked (the check needs JavaScript)</span>.</p>\n"
             f"<nav>{nav}</nav>\n" + "\n".join(parts) + f"\n{IMAGE_CHECK}\n</body></html>\n")
     return page, errors

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Checks reports/index.html (scripts/report_index.py).
+"""Checks reports/index.html (scripts/report/report_index.py).
 
   check_report_index.py --page PAGE
       the page parses (html.parser) with balanced tags, has no http(s):// URL,
@@ -30,6 +30,7 @@ import sys
 import urllib.parse
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+SCRIPTS = os.path.dirname(HERE)  # scripts/, where the command render-report is
 SECTIONS = ("provenance", "verification", "claims", "studies", "benchmarks", "images")
 VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"}
 
@@ -152,7 +153,7 @@ def expect_render(reports):
     """scripts/render-report on the fixture's page: passes; then with a PNG that
     exists but does not decode, fails naming it (only Chromium can tell). 77
     (ctest's skip) when chromium is not installed."""
-    render = [os.path.join(HERE, "render-report"), reports]
+    render = [os.path.join(SCRIPTS, "render-report"), reports]
     run = subprocess.run(render, capture_output=True, text=True)
     if run.returncode == 77:
         print("check_report_index: chromium is not installed: skipped")
