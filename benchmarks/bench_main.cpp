@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
   benchmark::AddCustomContext("library_build_type_means", "the build of Debian's libbenchmark; hofem's is hofem_build_type");
   // Version of the preconditioner names: in files without this key (before
   // version 2), "ic0" named Eigen's incomplete Cholesky, today's "eigen-ict";
-  // scripts/solver_sweep_tables.py maps old names so results stay comparable.
+  // scripts/plots/solver_sweep_tables.py maps old names so results stay comparable.
   benchmark::AddCustomContext("preconditioner_names", "2");
   // Version of the benchmark names: from version 2 every name says what it
   // measures (BM_AssembleHessian/tet10/neohookean, not enum indices), skipped

@@ -19,7 +19,7 @@
 // of two, after the first repetition) and solver_setup_us_per_unknown. A direct
 // solver's set-up is its factorisation, the bulk of its solve_s. The label names
 // the solver actually used ("auto" resolved). The work-precision plot of
-// reports/ (scripts/plot_reports.py) reads the medians.
+// reports/ (scripts/plots/plot_reports.py) reads the medians.
 #include "basis/basis_tabulation.hpp"
 #include "bench_common.hpp"
 #include "study/manufactured_solution.hpp"

@@ -21,8 +21,8 @@ import os
 import statistics
 import sys
 
-# bench_json (reading Google Benchmark JSON) is shared with the plots; it is in scripts/.
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+# bench_json (reading Google Benchmark JSON) is shared with the plots; it is in scripts/plots/.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "plots"))
 from bench_json import base_name, representatives  # noqa: E402
 from report_html import load_json  # noqa: E402
 

@@ -15,7 +15,7 @@
 // from dense matrices (eigenvalues only); a Schwarz S that is not numerically SPD
 // (no stabilisation, eps <= 3e-3 on Tet10) is a breakdown, kappa +inf.
 //
-// Rows: every kappa as a measurement (the curve of Fig. 5; scripts/plot_fcm.py);
+// Rows: every kappa as a measurement (the curve of Fig. 5; scripts/plots/plot_fcm.py);
 // checks that
 //  - the smallest volume fraction is eps^3,
 //  - Additive Schwarz with stabilisation stays bounded as eps -> 0 (max over the

@@ -1,17 +1,17 @@
 #!/usr/bin/python3
 """The plotting scripts run on small generated inputs and write their PNGs:
 
-- scripts/plot_convergence.py on a convergence table of two problems, three
+- scripts/plots/plot_convergence.py on a convergence table of two problems, three
   orders, tet and hex, uniform and perturbed meshes (errors C h^(p+1) and
   C h^p, slightly off the asymptote so the rates are not round numbers);
-- scripts/plot_scenes.py on two scenes' stats.json (one without gravity).
+- scripts/plots/plot_scenes.py on two scenes' stats.json (one without gravity).
 
 Both run with HOFEM_PLOT_STRICT=1, so an axis without a label, a log axis with
 fewer than two labelled ticks or a legend under 8 pt fails the run
-(scripts/plot_style.py). The PNGs must exist and be PNG images, and the printed
+(scripts/plots/plot_style.py). The PNGs must exist and be PNG images, and the printed
 convergence table must show the rates of the generated table.
 
-    check_plots.py SCRIPTS_DIR OUT_DIR
+    check_plots.py PLOTS_DIR OUT_DIR   (PLOTS_DIR: scripts/plots)
 """
 import json
 import math
@@ -108,5 +108,5 @@ def main(scripts, out):
 
 if __name__ == "__main__":
     if len(sys.argv) != 3:
-        sys.exit("usage: check_plots.py SCRIPTS_DIR OUT_DIR")
+        sys.exit("usage: check_plots.py PLOTS_DIR OUT_DIR")
     main(Path(sys.argv[1]), Path(sys.argv[2]))

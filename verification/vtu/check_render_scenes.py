@@ -1,4 +1,4 @@
-"""hofem run --no-frames --final-frame, then scripts/render_scenes.py on its output.
+"""hofem run --no-frames --final-frame, then scripts/plots/render_scenes.py on its output.
 
 Usage: check_render_scenes.py HOFEM SOURCE_DIR WORKDIR
 
@@ -30,8 +30,8 @@ def fail(msg):
 
 
 def check_culling(source):
-    sys.path.insert(0, str(source / "scripts"))
-    import render_scenes as rs  # noqa: E402 (scripts/ is not a package)
+    sys.path.insert(0, str(source / "scripts" / "plots"))
+    import render_scenes as rs  # noqa: E402 (scripts/plots/ is not a package)
 
     # VTK's Hex8 vertex order on the unit cube.
     x = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], float)
@@ -64,7 +64,7 @@ def main():
     written = sorted(p.name for p in out.iterdir())
     if written != ["final.vtu", "stats.json"]:
         fail(f"{out} holds {written}, expected final.vtu and stats.json only")
-    subprocess.run([sys.executable, str(source / "scripts/render_scenes.py"), str(work / "reports")], check=True)
+    subprocess.run([sys.executable, str(source / "scripts/plots/render_scenes.py"), str(work / "reports")], check=True)
     png = work / "reports" / "scenes" / "cantilever.png"
     if not png.exists():
         fail(f"{png} was not written")

@@ -2,7 +2,7 @@
 """Figures of the finite-cell experiments of Longva et al. 2020, drawn from the rows and
 measurements of reports/verification.json (`hofem verify`).
 
-    /usr/bin/python3 scripts/plot_fcm.py [reports-dir | report.json]
+    /usr/bin/python3 scripts/plots/plot_fcm.py [reports-dir | report.json]
 
 Writes the PNGs next to the JSON. One function per figure; each returns the file
 it wrote, or None after saying which rows it missed (the group did not run), so

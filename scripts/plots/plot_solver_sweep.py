@@ -4,7 +4,7 @@ solver_skips.json (the configurations skipped on purpose, with the reason) and
 solver_histories.json (written by build/bin/hofem_bench, see reports/README.md).
 Used by plot_reports.py; on its own, for the full preset's directory:
 
-    /usr/bin/python3 scripts/plot_solver_sweep.py reports/full
+    /usr/bin/python3 scripts/plots/plot_solver_sweep.py reports/full
 """
 import json
 import math

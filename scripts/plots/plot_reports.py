@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Turns reports/verification.json, reports/convergence.json (the manufactured-solution
-study's table, through scripts/plot_convergence.py) and reports/benchmarks.json into PNG
-plots (their look shared through scripts/plot_style.py) and prints a short summary table; with reports/solver_benchmarks.json (the solver
-sweep) also its plots, tables and target verdicts (scripts/plot_solver_sweep.py). Run with Debian's interpreter (python3-numpy,
-python3-matplotlib): /usr/bin/python3 scripts/plot_reports.py reports
+study's table, through scripts/plots/plot_convergence.py) and reports/benchmarks.json into PNG
+plots (their look shared through scripts/plots/plot_style.py) and prints a short summary table; with reports/solver_benchmarks.json (the solver
+sweep) also its plots, tables and target verdicts (scripts/plots/plot_solver_sweep.py). Run with Debian's interpreter (python3-numpy,
+python3-matplotlib): /usr/bin/python3 scripts/plots/plot_reports.py reports
 """
 import json
 import math

@@ -11,7 +11,7 @@ One colour per element order in every panel (plot_style.py), marker per cell,
 line style per mesh kind; the observed rate of each series' finest pair (the
 table's rate_l2 / rate_h1 of its last row) is written at its last segment.
 
-    /usr/bin/python3 scripts/plot_convergence.py reports/convergence.json [OUT_DIR]
+    /usr/bin/python3 scripts/plots/plot_convergence.py reports/convergence.json [OUT_DIR]
 
 Prints the table (errors and rates per series) and writes the PNGs into OUT_DIR
 (default: the table's directory).
