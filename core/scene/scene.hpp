@@ -4,7 +4,7 @@
 // keys, wrong types and out-of-range values raise SceneError naming the file and
 // the key path ("cantilever.json: material.poisson = 0.5 is out of range (-1, 0.5)").
 // The reference of every key (type, default, range) is SCENE_FORMAT.md, generated
-// by scripts/checks/schema_docs.py from the JSON Schema scene.schema.json beside this
+// by scripts/schema_docs.py from the JSON Schema scene.schema.json beside this
 // file; ctest schema.* checks that schema against this parser.
 //
 // {
