@@ -8,7 +8,7 @@
 #include "element/element_kernel.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
-#include "solver/blas_threads.hpp"
+#include "linalg/blas_threads.hpp"
 
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -19,6 +19,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 #include <thread>
 #include <utility>
 
@@ -70,7 +71,8 @@ Setup& setup(int kind) {
   return *s;
 }
 
-const char* kMaterials[] = {"linear", "stvk", "corotated", "neohookean", "stable-neohookean"};
+// Every material of the registry (material/material_registry.hpp).
+const std::vector<std::string> kMaterials = material_names();
 
 void set_counters(benchmark::State& state, int kind, int material, const Setup& s) {
   const double elements = s.mesh.num_elements();
@@ -79,19 +81,19 @@ void set_counters(benchmark::State& state, int kind, int material, const Setup& 
   state.counters["qpoints_per_s"] = benchmark::Counter(points, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["dofs"] = s.dofs.num_free();
   state.counters["qpoints_per_element"] = s.assembler->rule().size();
-  state.SetLabel(std::string(kKinds[kind].label) + " " + kMaterials[material]);
+  state.SetLabel(std::string(kKinds[kind].label) + " " + kMaterials[static_cast<size_t>(material)]);
 }
 
 void BM_AssembleEnergy(benchmark::State& state, int kind, int material) {
   Setup& s = setup(kind);
-  const auto mat = make_material(kMaterials[material], LameParameters::from_young_poisson(1.0, 0.3));
+  const auto mat = make_material(kMaterials[static_cast<size_t>(material)], LameParameters::from_young_poisson(1.0, 0.3));
   for (auto _ : state) benchmark::DoNotOptimize(s.assembler->energy(*mat, s.x));
   set_counters(state, kind, material, s);
 }
 
 void BM_AssembleGradient(benchmark::State& state, int kind, int material) {
   Setup& s = setup(kind);
-  const auto mat = make_material(kMaterials[material], LameParameters::from_young_poisson(1.0, 0.3));
+  const auto mat = make_material(kMaterials[static_cast<size_t>(material)], LameParameters::from_young_poisson(1.0, 0.3));
   Eigen::VectorXd g;
   for (auto _ : state) benchmark::DoNotOptimize(s.assembler->gradient(*mat, s.x, g));
   set_counters(state, kind, material, s);
@@ -99,7 +101,7 @@ void BM_AssembleGradient(benchmark::State& state, int kind, int material) {
 
 void BM_AssembleHessian(benchmark::State& state, int kind, int material) {
   Setup& s = setup(kind);
-  const auto mat = make_material(kMaterials[material], LameParameters::from_young_poisson(1.0, 0.3));
+  const auto mat = make_material(kMaterials[static_cast<size_t>(material)], LameParameters::from_young_poisson(1.0, 0.3));
   Eigen::VectorXd g;
   SparseMatrix K = s.assembler->new_matrix();
   for (auto _ : state) benchmark::DoNotOptimize(s.assembler->hessian(*mat, s.x, g, K, false));
@@ -136,7 +138,7 @@ void element_kernel_loop(const Setup& s, const Material& mat, double& sink) {
 
 void BM_ElementKernel(benchmark::State& state, int kind, int material) {
   Setup& s = setup(kind);
-  const auto mat = make_material(kMaterials[material], LameParameters::from_young_poisson(1.0, 0.3));
+  const auto mat = make_material(kMaterials[static_cast<size_t>(material)], LameParameters::from_young_poisson(1.0, 0.3));
   double sink = 0.0;
   for (auto _ : state) {
     switch (s.mesh.nodes_per_element()) {
@@ -174,7 +176,7 @@ void BM_AssembleHessianThreads(benchmark::State& state, int kind, int threads) {
 // thread, as in each Newton iteration of a small implicit problem: a 256 x 256
 // matrix product (a supernode's update; OpenBLAS threads it when it may), then
 // the Hex20 Neo-Hookean assembly. blas_threads:1 is what the direct solvers set
-// below kThreadedBlasMinFlops (solver/blas_threads.hpp); blas_threads:pool lets
+// below kThreadedBlasMinFlops (linalg/blas_threads.hpp); blas_threads:pool lets
 // OpenBLAS's workers take the product, after which they spin on sched_yield for
 // ~0.1 s beside the assembly's threads.
 void BM_AssembleAfterBlas(benchmark::State& state, bool pool) {
@@ -230,17 +232,17 @@ void register_named(const std::string& name, Function f, Args... args) {
 }
 
 const bool registered = [] {
-  const int kinds = static_cast<int>(std::size(kKinds)), materials = static_cast<int>(std::size(kMaterials));
+  const int kinds = static_cast<int>(std::size(kKinds)), materials = static_cast<int>(kMaterials.size());
   using Assembly = void (*)(benchmark::State&, int, int);
   const std::pair<const char*, Assembly> families[] = {
       {"BM_AssembleEnergy", BM_AssembleEnergy}, {"BM_AssembleGradient", BM_AssembleGradient}, {"BM_AssembleHessian", BM_AssembleHessian}};
   for (const auto& [family, f] : families)
     for (int k = 0; k < kinds; ++k)
       for (int m = 0; m < materials; ++m)
-        register_named(std::string(family) + "/" + element_name(k) + "/" + kMaterials[m], f, k, m);
+        register_named(std::string(family) + "/" + element_name(k) + "/" + kMaterials[static_cast<size_t>(m)], f, k, m);
   for (int k : {kTet10, kTet20, kHex20})
     for (int m : {0, 3})  // linear, neohookean
-      register_named("BM_ElementKernel/" + element_name(k) + "/" + kMaterials[m], BM_ElementKernel, k, m);
+      register_named("BM_ElementKernel/" + element_name(k) + "/" + kMaterials[static_cast<size_t>(m)], BM_ElementKernel, k, m);
   for (int k : {kTet4, kTet20, kHex20})
     for (int threads : {1, 2})
       register_named("BM_AssembleHessianThreads/" + element_name(k) + "/threads:" + std::to_string(threads),

@@ -22,11 +22,12 @@
 
 #include "assembly/assembler.hpp"
 #include "study/manufactured_solution.hpp"
-#include "solver/block_sparse_matrix.hpp"
-#include "solver/krylov.hpp"
-#include "solver/linear_operator.hpp"
+#include "linalg/block_sparse_matrix.hpp"
+#include "linalg/krylov.hpp"
+#include "linalg/linear_operator.hpp"
 #include "solver/p_multigrid.hpp"
-#include "solver/preconditioner.hpp"
+#include "linalg/preconditioner.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
@@ -203,7 +204,7 @@ void run_spmv(benchmark::State& state, int order, int level) {
   state.SetLabel(sys.key.tag());
 }
 
-// One iteration of our Jacobi-preconditioned CG (solver/krylov.cpp): the time of
+// One iteration of our Jacobi-preconditioned CG (linalg/krylov.cpp): the time of
 // conjugate_gradient() with 25 iterations minus that with 5, over 20 (the start
 // and the final true-residual product cancel), in the counter
 // seconds_per_iteration; the benchmark's time is that of the 25-iteration run.

@@ -10,7 +10,9 @@
 #include "material/material.hpp"
 #include "io/atomic_file.hpp"
 #include "mesh/box_mesh.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
+#include "solver/solver_factory.hpp"
+#include "basis/quadrature_degrees.hpp"
 
 #include <malloc.h>
 #include <nlohmann/json.hpp>
@@ -127,7 +129,7 @@ std::unique_ptr<LinearSystem> build_system(const SystemKey& key) {
   // The assembler (pattern, element-to-nonzero map) is dropped after assembly:
   // the sweep needs only K and b.
   const auto t0 = Clock::now();
-  const int degree = mms ? s->mms->options.quadrature_degree : default_quadrature_degree(key.cell, key.order, false);
+  const int degree = mms ? s->mms->options.quadrature_degree : default_quadrature_degrees(key.cell, key.order).stiffness;
   const Assembler a(mesh, s->dofs, degree);
   s->u_fixed = Eigen::VectorXd::Zero(3 * mesh.num_nodes());
   Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(mesh.nodes.data(), 3 * mesh.num_nodes());

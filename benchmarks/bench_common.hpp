@@ -35,7 +35,7 @@
 // leave the U test unable to go below p = 0.33). The full preset repeats the
 // same way.
 #include "assembly/dof_map.hpp"
-#include "assembly/sparse_matrix.hpp"
+#include "linalg/sparse_matrix.hpp"
 #include "study/manufactured_solution.hpp"
 #include "mesh/mesh.hpp"
 #include "quadrature/cell_type.hpp"

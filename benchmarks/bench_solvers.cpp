@@ -25,9 +25,10 @@
 // included, are errors "failed: <why>" (see bench_common.hpp for the rules).
 #include "bench_common.hpp"
 
-#include "solver/krylov.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/krylov.hpp"
+#include "linalg/linear_solver.hpp"
 #include "solver/solver_spec.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <benchmark/benchmark.h>
 

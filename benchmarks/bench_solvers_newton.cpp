@@ -21,7 +21,8 @@
 
 #include "study/manufactured_solution.hpp"
 #include "problem/static_elasticity.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <benchmark/benchmark.h>
 

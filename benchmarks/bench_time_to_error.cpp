@@ -23,7 +23,8 @@
 #include "basis/basis_tabulation.hpp"
 #include "bench_common.hpp"
 #include "study/manufactured_solution.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>

@@ -10,6 +10,7 @@
 
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace hofem::cli {
 
@@ -125,6 +126,10 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
                   "Keep each finished run's record under OUT/runs/NAME and reuse it when the run's scene is unchanged; "
                   "a run stopped part-way continues from its checkpoint (every 120 s)");
 
+  auto* choices = app.add_subcommand("choices", "List what a scene or command can name: materials, integrators, "
+                                                "linear solvers, preconditioners, element orders (from their registries)");
+  choices->add_flag("--json", out.choices.json, "Print JSON");
+
   // Input caps (io/input_file.hpp), raised per run; validated in commands.cpp.
   const std::string limit_help = "Raise an input cap: NAME=VALUE, NAME one of mesh-file-mb, scene-file-kb, elements, "
                                  "nodes, order, json-depth, boundary-entries (repeatable; README: input caps)";
@@ -141,9 +146,13 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   if (argc > 1 && argv[1][0] != '-') {
     const std::string first = argv[1];
     bool known = false;
-    for (const auto* sub : app.get_subcommands({})) known = known || sub->get_name() == first;
+    std::vector<std::string> valid;
+    for (const auto* sub : app.get_subcommands({})) {
+      known = known || sub->get_name() == first;
+      valid.push_back(sub->get_name());
+    }
     if (!known) {
-      fmt::print(err_stream, "hofem: error: unknown subcommand '{}' (valid: quadrature, basis, mesh, mms, verify, run, study)\n", first);
+      fmt::print(err_stream, "hofem: error: unknown subcommand '{}' (valid: {})\n", first, fmt::join(valid, ", "));
       return 2;
     }
   }
@@ -170,7 +179,7 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
     return 2;
   }
 
-  for (const auto* sub : {quad, basis, mesh, mms, verify, run, study})
+  for (const auto* sub : app.get_subcommands({}))
     if (*sub) out.subcommand = sub->get_name();
   return -1;
 }

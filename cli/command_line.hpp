@@ -12,7 +12,7 @@ namespace hofem::cli {
 /// Everything the command line selects: the subcommand's name and every
 /// subcommand's options (only the chosen one's are filled in).
 struct CommandLine {
-  std::string subcommand;  ///< "quadrature", "basis", "mesh", "mms", "verify", "run" or "study"
+  std::string subcommand;  ///< the chosen subcommand's name ("quadrature", "run", ...)
   QuadratureOptions quadrature;
   BasisOptions basis;
   MeshOptions mesh;
@@ -20,6 +20,7 @@ struct CommandLine {
   VerifyOptions verify;
   RunOptions run;
   StudyOptions study;
+  ChoicesOptions choices;
 };
 
 /// Parses argv (argv[0] the program name). Returns -1 when `out.subcommand` should

@@ -26,6 +26,7 @@
 #include <mpi.h>
 
 #include "parallel/mpi_runtime.hpp"
+#include "basis/element_orders.hpp"
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -140,7 +141,8 @@ int run_basis(const BasisOptions& o) {
   if (o.order < 1) throw UsageError(fmt::format("--order must be >= 1, got {}", o.order));
   check_order(o.order);
   if (cell == CellType::Quadrilateral) throw UsageError("--cell: no Lagrange basis on quad yet (valid: segment, triangle, tet, hex)");
-  if (cell == CellType::Hexahedron && o.order > 2) throw UsageError(fmt::format("--order: hex supports 1 (Hex8) or 2 (Hex20), got {}", o.order));
+  if (!supports_order(cell, o.order))
+    throw UsageError(fmt::format("--order: {} supports {}, got {}", name(cell), supported_orders(cell), o.order));
   const ReferenceBasis& b = lagrange_basis(cell, o.order);
   if (o.json) {
     nlohmann::json nodes = nlohmann::json::array();
@@ -171,8 +173,8 @@ int run_mesh(const MeshOptions& o) {
     if (cell != CellType::Tetrahedron && cell != CellType::Hexahedron)
       throw UsageError(fmt::format("--cell: box meshes are tet or hex, got '{}'", o.cell));
     const int order = o.order == kUnset ? 1 : o.order;
-    if (order < 1 || (cell == CellType::Hexahedron && order > 2))
-      throw UsageError(fmt::format("--order: tet needs >= 1, hex 1 or 2; got {}", order));
+    if (!supports_order(cell, order))
+      throw UsageError(fmt::format("--order: {} supports {}, got {}", name(cell), supported_orders(cell), order));
     check_order(order);
     check_cube_size(o.box, cell, order, "--box");
     m = box_mesh(unit_cube(o.box), cell, order);
@@ -247,8 +249,8 @@ void check_mms_cases(const MmsOptions& o, CellType cell, const std::vector<int>&
   for (int n : sizes)
     if (n < 1) throw UsageError(fmt::format("--n must be >= 1, got {}", n));
   for (int order : orders)
-    if (order < 1 || (cell == CellType::Hexahedron && order > 2))
-      throw UsageError(fmt::format("--order: tet needs >= 1, hex 1 or 2; got {}", order));
+    if (!supports_order(cell, order))
+      throw UsageError(fmt::format("--order: {} supports {}, got {}", name(cell), supported_orders(cell), order));
   apply_limits(o.limits);
   for (int order : orders) check_order(order);
   for (int order : orders)

@@ -113,4 +113,13 @@ struct StudyOptions {
 /// an invalid study or scene, 1 when the reference fails.
 int run_study_file(const StudyOptions& o);
 
+struct ChoicesOptions {
+  bool json = false;
+};
+/// Prints every registry: the materials, integrators, linear solvers,
+/// preconditioners, BoomerAMG variants and the element orders of each cell,
+/// with what each is (cli/choices.cpp); --json for scripts and ctest
+/// registries.lists_agree.
+int run_choices(const ChoicesOptions& o);
+
 }  // namespace hofem::cli

@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
     if (sub == "mesh") return hofem::cli::run_mesh(cl.mesh);
     if (sub == "run") return hofem::cli::run_scene_command(cl.run);  // --check, --print-defaults, or run_scene_file
     if (sub == "study") return hofem::cli::run_study_file(cl.study);
+    if (sub == "choices") return hofem::cli::run_choices(cl.choices);
   } catch (const hofem::cli::UsageError& e) {
     fmt::print(stderr, "hofem: error: {}\n", e.what());
     return 2;

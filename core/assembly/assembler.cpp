@@ -155,16 +155,11 @@ void gather(const Mesh& mesh, const double* x, int e, ElementWorkspace<N>& ws) {
 
 }  // namespace
 
-int default_quadrature_degree(CellType cell, int order, bool linear_material) {
-  if (cell == CellType::Tetrahedron) return linear_material ? std::max(1, 2 * (order - 1)) : 2 * order;
-  return 2 * order;
-}
-
 Assembler::Assembler(const Mesh& mesh, const DofMap& dofs, int quadrature_degree)
     : mesh_(mesh), dofs_(dofs) {
   if (dofs.num_dofs() != 3 * mesh.num_nodes())
     throw std::invalid_argument(fmt::format("Assembler: DofMap has {} DOFs for {} nodes", dofs.num_dofs(), mesh.num_nodes()));
-  degree_ = quadrature_degree >= 0 ? quadrature_degree : default_quadrature_degree(mesh.cell, mesh.order, false);
+  degree_ = quadrature_degree >= 0 ? quadrature_degree : default_quadrature_degrees(mesh.cell, mesh.order).stiffness;
   rule_ = &quadrature_rule(mesh.cell, degree_);
   tab_ = &cached_tabulation(mesh.cell, mesh.order, degree_);
   if (tab_->num_basis != mesh.nodes_per_element())

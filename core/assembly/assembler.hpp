@@ -9,13 +9,14 @@
 // (OpenMP), each thread with its own fixed-size workspace: no allocation inside
 // the element loop.
 #include "assembly/dof_map.hpp"
-#include "assembly/sparse_matrix.hpp"
+#include "linalg/sparse_matrix.hpp"
 #include "assembly/sparsity_pattern.hpp"
 #include "basis/basis_tabulation.hpp"
 #include "embedded/element_rules.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
 #include "quadrature/quadrature_rule.hpp"
+#include "basis/quadrature_degrees.hpp"
 
 #include <Eigen/Core>
 
@@ -25,12 +26,6 @@
 
 namespace hofem {
 
-/// Quadrature degree for the stiffness terms of an element when none is given:
-/// linear elasticity on affine (straight-sided) tetrahedra integrates exactly
-/// with 2(p-1) (product of two gradients of degree p-1); nonlinear materials get
-/// 2p (the choice of Longva et al. 2020 for Tet10 is 3 after its LP simplification;
-/// we keep a full rule). Hex: 2p (p + 1 Gauss points per direction).
-int default_quadrature_degree(CellType cell, int order, bool linear_material);
 
 /// How a diagonal (lumped) mass is made from the consistent element mass:
 /// row sums (order 1, where they are positive) or HRZ (Hinton, Rock &
@@ -45,7 +40,8 @@ std::vector<int> unsupported_nodes(const Mesh& mesh, const ElementRules& rules);
 
 class Assembler {
  public:
-  /// quadrature_degree < 0: default_quadrature_degree(cell, order, false).
+  /// quadrature_degree < 0: default_quadrature_degrees(cell, order).stiffness
+  /// (basis/quadrature_degrees.hpp: the general rule, curved cells and any material).
   Assembler(const Mesh& mesh, const DofMap& dofs, int quadrature_degree = -1);
   // The assembler keeps references to the mesh and the DOF map: a temporary
   // would dangle, so binding one does not compile.

@@ -12,7 +12,7 @@
 //    is assembled in parallel without atomics, in a fixed order (results are
 //    bitwise reproducible whatever the thread count).
 #include "assembly/dof_map.hpp"
-#include "assembly/sparse_matrix.hpp"
+#include "linalg/sparse_matrix.hpp"
 #include "mesh/mesh.hpp"
 
 #include <utility>

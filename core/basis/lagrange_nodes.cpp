@@ -1,4 +1,5 @@
 #include "basis/lagrange_nodes.hpp"
+#include "basis/element_orders.hpp"
 
 #include <fmt/format.h>
 
@@ -68,8 +69,7 @@ Eigen::MatrixXd simplex_lagrange_nodes(CellType cell, int p) {
 }
 
 Eigen::MatrixXd hex_nodes(int order) {
-  if (order != 1 && order != 2)
-    throw std::invalid_argument(fmt::format("hex elements: order 1 (Hex8) or 2 (Hex20), got {}", order));
+  check_element_order(CellType::Hexahedron, order, "hex elements");
   Eigen::MatrixXd x = reference_vertices(CellType::Hexahedron);
   if (order == 1) return x;
   // Hex20 edge midpoints, Gmsh edge order (Geo/MHexahedron.h).

@@ -2,6 +2,7 @@
 
 #include "basis/hex_bases.hpp"
 #include "basis/simplex_lagrange_basis.hpp"
+#include "basis/element_orders.hpp"
 
 #include <fmt/format.h>
 
@@ -17,9 +18,9 @@ std::unique_ptr<ReferenceBasis> make_lagrange_basis(CellType cell, int order) {
     case CellType::Triangle:
     case CellType::Tetrahedron: return std::make_unique<SimplexLagrangeBasis>(cell, order);
     case CellType::Hexahedron:
+      check_element_order(cell, order, "hex basis");
       if (order == 1) return std::make_unique<Hex8Basis>();
-      if (order == 2) return std::make_unique<Hex20Basis>();
-      throw std::invalid_argument(fmt::format("hex basis: order 1 (Hex8) or 2 (Hex20), got {}", order));
+      return std::make_unique<Hex20Basis>();
     case CellType::Quadrilateral: break;
   }
   throw std::invalid_argument(fmt::format("no Lagrange basis for cell {}", name(cell)));

@@ -1,4 +1,5 @@
 #include "dynamics/elastic_body.hpp"
+#include "basis/quadrature_degrees.hpp"
 
 #include <fmt/format.h>
 
@@ -69,10 +70,11 @@ ElasticBody::ElasticBody(const Mesh& mesh, const Material& material, std::vector
   validate(o);
   if (o.floor) options_.floor->normal.normalize();
   const bool explicit_scheme = is_explicit(o.integrator);
-  // Consistent mass: N_i N_j has degree 2p on affine cells (2p per direction on hexes).
+  // Consistent mass: N_i N_j (basis/quadrature_degrees.hpp).
   mass_ = std::make_unique<MassModel>(
       *disc_, o.density, o.mass.value_or(explicit_scheme ? MassKind::Lumped : MassKind::Consistent),
-      o.lumping.value_or(mesh.order == 1 ? MassLumping::RowSum : MassLumping::HRZ), 2 * mesh.order,
+      o.lumping.value_or(mesh.order == 1 ? MassLumping::RowSum : MassLumping::HRZ),
+      default_quadrature_degrees(mesh.cell, mesh.order).mass,
       o.quadrature_degree, explicit_scheme);
   stats_.mass = mass_->name();
   // Distributed: this rank's elements' share (a partial sum, as every force

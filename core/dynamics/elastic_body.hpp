@@ -15,8 +15,8 @@
 #include "dynamics/prescribed_motion.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
-#include "solver/discretization.hpp"
-#include "solver/problem_options.hpp"
+#include "problem/discretization.hpp"
+#include "problem/problem_options.hpp"
 
 #include <Eigen/Core>
 

@@ -12,7 +12,7 @@
 // unusable in explicit schemes. Contact is nodal (every node of a higher-order
 // element, edge and face nodes included), no friction.
 #include "assembly/dof_map.hpp"
-#include "assembly/sparse_matrix.hpp"
+#include "linalg/sparse_matrix.hpp"
 
 #include <Eigen/Core>
 

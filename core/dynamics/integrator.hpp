@@ -9,6 +9,7 @@
 //   implicit-euler     minimisation of the incremental potential (thesis 2.25)
 //                      by Newton with line search                        order 1
 // The explicit ones never assemble a Hessian.
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +17,20 @@
 namespace hofem {
 
 enum class Integrator { ExplicitEuler, SymplecticEuler, Leapfrog, RK4, SemiImplicit, ImplicitEuler };
+
+/// A row of the one table of integrators (integrator.cpp): the scene reader,
+/// --help, the scene schema and the verification's order checks read it.
+struct IntegratorEntry {
+  Integrator integrator;
+  std::string_view name;         ///< as scene files spell it
+  std::string_view description;
+  int order;                     ///< convergence order in dt (what the verification asserts)
+  bool is_explicit;              ///< never assembles a Hessian
+  double stability_limit;        ///< h omega_max of an undamped oscillator; 0: none stable, inf: no limit
+};
+
+/// Every integrator, in the order above.
+std::span<const IntegratorEntry> integrator_registry();
 
 /// Scene-file names, in the order above.
 std::vector<std::string> integrator_names();

@@ -1,4 +1,5 @@
 #include "dynamics/mass_model.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <fmt/format.h>
 

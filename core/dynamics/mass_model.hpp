@@ -6,9 +6,9 @@
 // mass the CHOLMOD factor of its free block, made again when the DOF map changes
 // (a released node set).
 // Distributed: every vector and matrix is this rank's elements' share.
-#include "assembly/sparse_matrix.hpp"
-#include "solver/discretization.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/sparse_matrix.hpp"
+#include "problem/discretization.hpp"
+#include "linalg/linear_solver.hpp"
 
 #include <Eigen/Core>
 

@@ -6,7 +6,7 @@
 // (implicit_steps.cpp, symbolic analysis reused every step). A failed step
 // leaves the state at the last good one and says why.
 #include "dynamics/elastic_body.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 
 #include <Eigen/Core>
 

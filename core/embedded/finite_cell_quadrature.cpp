@@ -4,6 +4,7 @@
 #include "embedded/embedded_quadrature.hpp"
 #include "embedded/quadrature_simplification.hpp"
 #include "quadrature/rule_library.hpp"
+#include "basis/quadrature_degrees.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -20,13 +21,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-/// Highest total degree of a monomial in the basis' space (Tet p, Hex8 3: xyz, Hex20 4: x^2yz).
-int highest_total_degree(CellType cell, int order) {
-  int d = 0;
-  for (const auto& a : lagrange_basis(cell, order).polynomial_space()) d = std::max(d, a[0] + a[1] + a[2]);
-  return d;
-}
 
 std::shared_ptr<const ElementQuadrature> make_rule(CellType cell, int order, Eigen::MatrixXd xi, Eigen::VectorXd w) {
   return std::make_shared<const ElementQuadrature>(make_element_quadrature(cell, order, std::move(xi), std::move(w)));
@@ -101,11 +95,9 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
   const CellType cell = background.cell;
   const int p = background.order, ne = background.num_elements();
   CellQuadrature out;
-  const int highest = highest_total_degree(cell, p);
-  out.stiffness_degree = options.stiffness_degree >= 0      ? options.stiffness_degree
-                         : cell == CellType::Tetrahedron ? 2 * p
-                                                         : 2 * (highest - 1);
-  out.mass_degree = options.mass_degree >= 0 ? options.mass_degree : 2 * highest;
+  const QuadratureDegrees degrees = default_quadrature_degrees(cell, p, IntegrationDomain::CutCell);
+  out.stiffness_degree = options.stiffness_degree >= 0 ? options.stiffness_degree : degrees.stiffness;
+  out.mass_degree = options.mass_degree >= 0 ? options.mass_degree : degrees.mass;
   std::vector<AffineCell> maps;
   maps.reserve(ne);
   for (int e = 0; e < ne; ++e) maps.push_back(affine_cell(background, e));  // throws before any work

@@ -4,6 +4,7 @@
 #include "io/vtu_appended.hpp"
 
 #include "basis/lagrange_nodes.hpp"
+#include "basis/element_orders.hpp"
 
 #include <fmt/format.h>
 
@@ -236,10 +237,11 @@ int vtk_cell_type(CellType cell, int order) {
   if (cell == CellType::Triangle && order == 1) return 5;
   if (cell == CellType::Tetrahedron && order >= 1)
     return order == 1 ? kVtkTetra : order == 2 ? kVtkQuadraticTetra : kVtkLagrangeTetrahedron;
-  if (cell == CellType::Hexahedron && (order == 1 || order == 2))
+  if (cell == CellType::Hexahedron && supports_order(cell, order))
     return order == 1 ? kVtkHexahedron : kVtkQuadraticHexahedron;
-  throw std::invalid_argument(
-      fmt::format("no VTK cell for {} of order {} (tet: order >= 1; hex: 1 or 2; triangle: 1)", name(cell), order));
+  throw std::invalid_argument(fmt::format("no VTK cell for {} of order {} (tet: {}; hex: {}; triangle: order 1)",
+                                          name(cell), order, supported_orders(CellType::Tetrahedron),
+                                          supported_orders(CellType::Hexahedron)));
 }
 
 std::vector<std::array<int, 3>> vtk_tetrahedron_lattice(int p) {

@@ -46,7 +46,6 @@ PolarDecomposition polar_decomposition(const Mat3& F);
 class Corotated final : public Material {
  public:
   explicit Corotated(LameParameters lame) : Material(lame) {}
-  std::string_view name() const override { return "corotated"; }
   double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const override;
   bool needs_polar_decomposition() const override { return true; }
 };

@@ -14,7 +14,6 @@ namespace hofem {
 class LinearElastic final : public Material {
  public:
   explicit LinearElastic(LameParameters lame);
-  std::string_view name() const override { return "linear"; }
   double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const override;
   /// mu (d_ik d_jl + d_il d_jk) + lambda d_ij d_kl is PSD for mu > 0 and
   /// 3 lambda + 2 mu > 0, which from_young_poisson guarantees (E > 0, -1 < nu < 0.5).

@@ -1,11 +1,6 @@
-// Lamé conversion, the material factory and the PSD projection of a tangent.
+// Lamé conversion and the PSD projection of a tangent (the factory: material_registry.cpp).
 #include "material/material.hpp"
 
-#include "material/corotated.hpp"
-#include "material/linear_elastic.hpp"
-#include "material/neo_hookean.hpp"
-#include "material/stable_neo_hookean.hpp"
-#include "material/st_venant_kirchhoff.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -31,20 +26,6 @@ LameParameters LameParameters::from_young_poisson(double young, double poisson) 
 
 long long polar_decompositions(const Material& material, long long assemblies, long long elements, long long points) {
   return material.needs_polar_decomposition() ? assemblies * elements * points : 0;
-}
-
-std::vector<std::string> material_names() {
-  return {"linear", "stvk", "corotated", "neohookean", "stable-neohookean"};
-}
-
-std::unique_ptr<Material> make_material(std::string_view name, LameParameters lame) {
-  if (name == "linear") return std::make_unique<LinearElastic>(lame);
-  if (name == "stvk") return std::make_unique<StVenantKirchhoff>(lame);
-  if (name == "corotated") return std::make_unique<Corotated>(lame);
-  if (name == "neohookean") return std::make_unique<NeoHookean>(lame);
-  if (name == "stable-neohookean") return std::make_unique<StableNeoHookean>(lame);
-  throw std::invalid_argument(
-      fmt::format("unknown material '{}' (valid: {})", name, fmt::join(material_names(), ", ")));
 }
 
 // The input is symmetrised first (the eigensolver would otherwise read only the

@@ -36,7 +36,9 @@ class MaterialDomainError : public std::runtime_error {
 class Material {
  public:
   virtual ~Material() = default;
-  virtual std::string_view name() const = 0;
+  /// The registry's name (material_registry.cpp; make_material sets it);
+  /// empty for a material constructed directly.
+  std::string_view name() const { return name_; }
   /// Whether psi is defined at F (false e.g. for Neo-Hookean with det F <= 0).
   virtual bool defined_at(const Mat3& F) const { (void)F; return true; }
   /// psi(F), plus P(F) into *P and dP/dF into *dPdF where those are non-null, from
@@ -72,6 +74,10 @@ class Material {
  protected:
   explicit Material(LameParameters lame) : lame_(lame) {}
   LameParameters lame_;
+
+ private:
+  friend std::unique_ptr<Material> make_material(std::string_view name, LameParameters lame);
+  std::string name_;
 };
 
 /// Polar decompositions (SVDs of F) the material computes over `assemblies`
@@ -79,7 +85,7 @@ class Material {
 /// per point and evaluation for a material that needs them (corotated), else 0.
 long long polar_decompositions(const Material& material, long long assemblies, long long elements, long long points);
 
-/// Names accepted by make_material: "linear", "stvk", "corotated", "neohookean", "stable-neohookean".
+/// Names accepted by make_material, from the one table (material_registry.hpp).
 std::vector<std::string> material_names();
 /// Throws std::invalid_argument naming the valid choices for an unknown name.
 std::unique_ptr<Material> make_material(std::string_view name, LameParameters lame);

@@ -14,7 +14,6 @@ namespace hofem {
 class NeoHookean final : public Material {
  public:
   explicit NeoHookean(LameParameters lame) : Material(lame) {}
-  std::string_view name() const override { return "neohookean"; }
   bool defined_at(const Mat3& F) const override;
   double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const override;
 };

@@ -14,7 +14,6 @@ namespace hofem {
 class StVenantKirchhoff final : public Material {
  public:
   explicit StVenantKirchhoff(LameParameters lame) : Material(lame) {}
-  std::string_view name() const override { return "stvk"; }
   double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const override;
 };
 

@@ -30,7 +30,6 @@ class StableNeoHookean final : public Material {
  public:
   /// Throws std::invalid_argument unless lambda_L + 5/6 mu_L > 0 (finite).
   explicit StableNeoHookean(LameParameters lame);
-  std::string_view name() const override { return "stable-neohookean"; }
   double evaluate(const Mat3& F, Mat3* P, Mat9* dPdF) const override;
   double model_mu() const { return mu_; }
   double model_lambda() const { return lambda_; }

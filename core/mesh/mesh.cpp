@@ -1,4 +1,5 @@
 #include "mesh/mesh.hpp"
+#include "basis/element_orders.hpp"
 
 #include <fmt/format.h>
 
@@ -26,9 +27,9 @@ int nodes_per_element(CellType cell, int order) {
     return (order + 1) * (order + 2) * (order + 3) / 6;
   }
   if (cell == CellType::Hexahedron) {
-    if (order == 1) return 8;
-    if (order == 2) return 20;
-    throw MeshError(fmt::format("hexahedron order must be 1 (Hex8) or 2 (Hex20), got {}", order));
+    if (!supports_order(cell, order))
+      throw MeshError(fmt::format("hexahedra support {}, got {}", supported_orders(cell), order));
+    return order == 1 ? 8 : 20;
   }
   // Triangles: surfaces written for output (the embedded surface of the finite cell method).
   if (cell == CellType::Triangle && order >= 1) return (order + 1) * (order + 2) / 2;

@@ -2,6 +2,7 @@
 
 #include "basis/lagrange_nodes.hpp"
 #include "quadrature/cell_type.hpp"
+#include "basis/element_orders.hpp"
 
 #include <fmt/format.h>
 
@@ -140,7 +141,9 @@ Mesh upgrade_order(const Mesh& linear, int order) {
       local.push_back(p);
     }
   } else {
-    if (order != 2) throw MeshError(fmt::format("upgrade_order: hexahedra go to order 2 (Hex20) only, got {}", order));
+    // From Hex8, the only higher order hexahedra support is Hex20.
+    if (!supports_order(CellType::Hexahedron, order))
+      throw MeshError(fmt::format("upgrade_order: hexahedra support {}, got {}", supported_orders(CellType::Hexahedron), order));
     denom = 2;
     for (int v = 0; v < 8; ++v) local.push_back({{v, 2}});
     const int edges[12][2] = {{0, 1}, {0, 3}, {0, 4}, {1, 2}, {1, 5}, {2, 3}, {2, 6}, {3, 7}, {4, 5}, {4, 7}, {5, 6}, {6, 7}};

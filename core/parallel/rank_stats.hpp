@@ -4,7 +4,7 @@
 // (scripts/mpi/mpi_model.py). Gathered so that rank 0 can write them all.
 //
 // The figures are plain counts and times, filled by the layers that know them
-// (solver/rank_figures.hpp: the mesh piece, the DOF rows, the assembler and
+// (problem/rank_figures.hpp: the mesh piece, the DOF rows, the assembler and
 // the hypre solver); this layer only gathers and writes them.
 #include <mpi.h>
 #include <nlohmann/json.hpp>

@@ -3,6 +3,7 @@
 #include "mesh/mesh_quality.hpp"
 #include "parallel/collectives.hpp"
 #include "parallel/mpi_runtime.hpp"
+#include "basis/quadrature_degrees.hpp"
 
 #include <fmt/format.h>
 
@@ -79,7 +80,7 @@ void StaticElasticity::finish_setup(const std::vector<int>& constrained, const E
   d.constrain(constrained);
   solver_choice_ = d.choose_solver(options_.solver);
   solver_ = d.make_solver(solver_choice_.spec, options_.preconditioner_blocks ? &*options_.preconditioner_blocks : nullptr);
-  const int load_degree = options_.load_degree >= 0 ? options_.load_degree : 2 * m.order + 2;
+  const int load_degree = options_.load_degree >= 0 ? options_.load_degree : default_quadrature_degrees(m.cell, m.order).load;
   f_ext_ = body_force ? d.assembler().body_force_vector(body_force, load_degree) : Eigen::VectorXd::Zero(3 * m.num_nodes());
   d.complete_nodal(f_ext_);  // each rank integrated its own elements
   if (external.size() > 0) f_ext_ += external;

@@ -9,12 +9,12 @@
 #include "assembly/dof_map.hpp"
 #include "material/material.hpp"
 #include "mesh/mesh.hpp"
-#include "solver/rank_figures.hpp"
-#include "solver/discretization.hpp"
+#include "problem/rank_figures.hpp"
+#include "problem/discretization.hpp"
 #include "solver/distributed_system.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 #include "solver/newton.hpp"
-#include "solver/problem_options.hpp"
+#include "problem/problem_options.hpp"
 #include "solver/solver_choice.hpp"
 
 #include <Eigen/Core>
@@ -37,7 +37,7 @@ struct DirichletCondition {
 /// The shared options (ProblemOptions: quadrature, element rules, solver,
 /// Newton, distribution) and the static solve's own.
 struct StaticOptions : ProblemOptions {
-  int load_degree = -1;        ///< body-force integration; < 0: 2p + 2
+  int load_degree = -1;        ///< body-force integration; < 0: default_quadrature_degrees(...).load, 2p + 2
   /// Extra external load at full load factor, all 3 * num_nodes DOFs (e.g. surface
   /// tractions integrated by the caller); empty = none. Distributed: given on the global mesh.
   Eigen::VectorXd external_load;

@@ -5,12 +5,15 @@
 #include "material/material.hpp"
 #include "io/input_file.hpp"
 #include "scene/json_input.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/boomeramg_variants.hpp"
+#include "solver/solver_spec.hpp"
+#include "basis/element_orders.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -99,7 +102,7 @@ void parse_mesh(const Field& m, Scene& s) {
     if (m.has("file")) m.at("cell").fail("is given by the .msh file; remove it");
     s.cell = m.at("cell").choice({"tet", "hex"}) == "hex" ? CellType::Hexahedron : CellType::Tetrahedron;
   }
-  s.order = m.has("order") ? m.at("order").integer(1, s.cell == CellType::Hexahedron ? 2 : input_limits().order) : 1;
+  s.order = m.has("order") ? m.at("order").integer(1, std::min(max_element_order(s.cell), input_limits().order)) : 1;
   check_generated_size(m, s.mesh, s.cell, s.order);
 }
 

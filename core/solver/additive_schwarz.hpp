@@ -26,7 +26,8 @@
 //  - the map from each block entry to its position in A's value array: when
 //    A's size or number of nonzeros changes, or an entry is found moved;
 //  - S_K (dense, symmetric): every setup().
-#include "solver/preconditioner.hpp"
+#include "assembly/mesh_view.hpp"
+#include "linalg/preconditioner.hpp"
 
 #include <Eigen/Core>
 
@@ -58,7 +59,6 @@ class AdditiveSchwarzPreconditioner final : public Preconditioner {
  public:
   explicit AdditiveSchwarzPreconditioner(AdditiveSchwarzOptions options = {}) : options_(std::move(options)) {}
 
-  std::string_view name() const override { return "schwarz"; }
   void set_mesh_view(const MeshView& d) override;
   /// Fails (with last_error()) without a mesh view, on a size mismatch, an
   /// element id out of range, a non-finite entry in A, a zero block or a zero
@@ -82,6 +82,7 @@ class AdditiveSchwarzPreconditioner final : public Preconditioner {
   std::int64_t num_reflected() const { return num_reflected_; }
 
  private:
+  MeshView mesh_view_;
   bool build_blocks();
   void build_entry_map(const SparseMatrix& A);
   bool entry_map_matches(const SparseMatrix& A) const;

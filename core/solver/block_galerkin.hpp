@@ -12,7 +12,7 @@
 // galerkin_structure() finds A_c's block pattern once per fine pattern;
 // galerkin_values() writes the values, coarse block rows in parallel, each thread
 // with its own position map.
-#include "solver/block_sparse_matrix.hpp"
+#include "linalg/block_sparse_matrix.hpp"
 #include "solver/p_hierarchy.hpp"
 
 namespace hofem {

@@ -1,9 +1,11 @@
 #include "solver/distributed_system.hpp"
 
+#include "assembly/mesh_view.hpp"
+
 #include "parallel/collectives.hpp"
 #include "parallel/mpi_runtime.hpp"
-#include "solver/boomeramg.hpp"
-#include "solver/hypre_matrix.hpp"
+#include "linalg/boomeramg.hpp"
+#include "linalg/hypre_matrix.hpp"
 
 #include <Eigen/Geometry>
 #include <HYPRE_krylov.h>

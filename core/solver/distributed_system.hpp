@@ -13,9 +13,10 @@
 // Newton, load stepping and time stepping thus run unchanged on local vectors.
 #include "assembly/distributed_dofs.hpp"
 #include "assembly/dof_map.hpp"
-#include "assembly/sparse_matrix.hpp"
+#include "linalg/sparse_matrix.hpp"
 #include "mesh/mesh.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
+#include "solver/solver_spec.hpp"
 
 #include <Eigen/Core>
 

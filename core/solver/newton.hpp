@@ -9,8 +9,8 @@
 // Indefinite Hessians: if the factorisation reports "not positive definite" the
 // Hessian is rebuilt with per-point PSD projection of dP/dF and, failing that,
 // shifted by a growing multiple of its diagonal scale.
-#include "assembly/sparse_matrix.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/sparse_matrix.hpp"
+#include "linalg/linear_solver.hpp"
 
 #include <Eigen/Core>
 

@@ -4,8 +4,8 @@
 // ensure_descent. Each fallback they take (projection per quadrature point,
 // diagonal shifts, the gradient) is kept in DirectionState and recorded in the
 // iteration's NewtonIteration.
-#include "assembly/sparse_matrix.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/sparse_matrix.hpp"
+#include "linalg/linear_solver.hpp"
 #include "solver/newton.hpp"
 
 #include <Eigen/Core>

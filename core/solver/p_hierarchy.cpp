@@ -2,6 +2,7 @@
 
 #include "basis/reference_basis.hpp"
 #include "mesh/mesh_upgrade.hpp"
+#include "basis/element_orders.hpp"
 
 #include <fmt/format.h>
 
@@ -124,8 +125,7 @@ PHierarchy::PHierarchy(const Mesh& mesh, const DofMap& dofs, const std::vector<i
     throw std::invalid_argument(fmt::format("p-hierarchy: orders must run from the mesh's order {} down to 1", mesh.order));
   for (size_t k = 1; k < orders.size(); ++k)
     if (orders[k] >= orders[k - 1]) throw std::invalid_argument("p-hierarchy: orders must decrease strictly");
-  if (mesh.cell == CellType::Hexahedron && orders.size() > 2)
-    throw std::invalid_argument("p-hierarchy: Hex20 coarsens to Hex8 only");
+  for (int order : orders) check_element_order(mesh.cell, order, "p-hierarchy level");
 
   PLevel fine;
   fine.order = mesh.order;

@@ -1,6 +1,8 @@
 #include "solver/p_multigrid.hpp"
 
-#include "solver/cholmod_solver.hpp"
+#include "linalg/boomeramg.hpp"
+
+#include "linalg/cholmod_solver.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -107,7 +109,8 @@ bool PMultigridPreconditioner::prepare(const SparseMatrix& A, const BlockSparseM
     if (!coarse_direct_->factorize(Ac))  // CHOLMOD re-analyses by itself on a new pattern
       return fail("pmg: the order-1 operator P^T A P is not positive definite (A is not SPD)");
   } else {
-    if (!coarse_amg_) coarse_amg_ = make_preconditioner(options_.coarse_amg);
+    if (!coarse_amg_)
+      coarse_amg_ = std::make_unique<BoomerAmgPreconditioner>(options_.coarse_amg, boomeramg_options(options_.coarse_amg));
     if (!coarse_amg_->setup(Ac)) return fail("pmg: order-1 level: " + coarse_amg_->last_error());
   }
   return true;

@@ -20,7 +20,7 @@
 // steps times a safety factor (deal.II's PreconditionChebyshev). A polynomial in a
 // symmetric operator is its own adjoint, so the cycle is symmetric positive
 // definite and preconditions CG. The levels' operators are 3x3 block matrices in
-// single precision (solver/block_sparse_matrix.hpp): a smoother need not be exact,
+// single precision (linalg/block_sparse_matrix.hpp): a smoother need not be exact,
 // and the products, which are the cycle's cost, move 3.6x fewer bytes than the
 // assembled double matrix. Vectors and sums stay in double.
 //
@@ -45,12 +45,13 @@
 // Order 1 has no coarser p level: setup() then fails with "pmg needs element order
 // >= 2" (use amg there). Without set_mesh_view() setup() fails. apply() uses
 // work vectors of its own (one instance must not be applied from two threads).
+#include "assembly/mesh_view.hpp"
 #include "solver/additive_schwarz.hpp"
 #include "solver/block_galerkin.hpp"
-#include "solver/block_sparse_matrix.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/block_sparse_matrix.hpp"
+#include "linalg/linear_solver.hpp"
 #include "solver/p_hierarchy.hpp"
-#include "solver/preconditioner.hpp"
+#include "linalg/preconditioner.hpp"
 
 #include <Eigen/Core>
 
@@ -81,18 +82,18 @@ struct PMultigridOptions {
   /// two more CG iterations. (A process's first BoomerAMG set-up also starts MPI
   /// and hypre, ~0.15 s once.)
   Eigen::Index direct_coarse_limit = 2000;
-  std::string coarse_amg = "amg";  ///< the BoomerAMG variant above the limit (solver/boomeramg.hpp)
+  std::string coarse_amg = "amg";  ///< the BoomerAMG variant above the limit (linalg/boomeramg.hpp)
 };
 
 class PMultigridPreconditioner final : public Preconditioner {
  public:
   explicit PMultigridPreconditioner(PMultigridOptions options = {});
   ~PMultigridPreconditioner() override;
-  std::string_view name() const override { return "pmg"; }
   bool setup(const SparseMatrix& A) override;
   /// Uses `blocks` (A's block copy, alive while applied) as the fine level's operator.
   bool setup(const SparseMatrix& A, const BlockSparseMatrix<double>& blocks) override;
   void apply(const Eigen::VectorXd& r, Eigen::VectorXd& z) const override;
+  void set_mesh_view(const MeshView& d) override { mesh_view_ = d; }
 
   /// Levels including the order-1 level (0 before the first setup).
   int num_levels() const { return hierarchy_ ? hierarchy_->num_levels() : 0; }
@@ -108,6 +109,7 @@ class PMultigridPreconditioner final : public Preconditioner {
   double bytes_per_apply() const;
 
  private:
+  MeshView mesh_view_;
   struct Level {
     BlockSparseMatrix<double> exact;   ///< the level's operator (Galerkin source of the next level)
     BlockSparseMatrix<float> smooth;   ///< the same in single precision, for smoothing and residuals

@@ -20,7 +20,7 @@
 //    BM_ImplicitStep (benchmarks/bench_implicit_step.cpp).
 //  - finite cells of order 1 (a Hex8 background) follow the order-1 rule.
 //  - "auto" reuses preconditioner set-ups across Newton iterations and time
-//    steps by the amortised rule (SetupReuse, solver/krylov.cpp); a named
+//    steps by the amortised rule (SetupReuse, linalg/krylov.cpp); a named
 //    solver sets up every matrix unless its spec says otherwise.
 //  - distributed runs do not ask: they always solve on hypre.
 #include "solver/solver_spec.hpp"

@@ -3,7 +3,7 @@
 
 1. Declared: the CMake targets (core/CMakeLists.txt's hofem_layer calls),
    written by CMake as build/core/layers.txt, "layer: dependency ...".
-2. Used: the layers each layer's sources include ("solver/krylov.hpp" is the
+2. Used: the layers each layer's sources include ("linalg/krylov.hpp" is the
    layer solver), read from core/.
 3. Documented: the block of README.md between the layer-graph markers.
 

@@ -176,7 +176,9 @@ def summary(report, bench):
 def plot_assembly(bench, out):
     med = bench_medians(bench)
     kinds = ["Tet4", "Tet10", "Tet20", "Hex8", "Hex20"]
-    materials = ["linear", "stvk", "corotated", "neohookean", "stable-neohookean"]
+    # The materials the benchmark ran (its names BM_AssembleHessian/tet10/<material>
+    # follow the material registry), in the order of their first appearance.
+    materials = list(dict.fromkeys(k.split("/")[2] for k in med if k.startswith("BM_AssembleHessian/")))
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.2))
     for ax, what in zip(axes, ("Energy", "Gradient", "Hessian")):
         width = 0.15
@@ -185,7 +187,7 @@ def plot_assembly(bench, out):
             for kind in kinds:  # names BM_AssembleHessian/tet10/neohookean
                 b = med.get(f"BM_Assemble{what}/{kind.lower()}/{mat}")
                 rates.append(b[2].get("qpoints_per_s", float("nan")) if b else float("nan"))
-            ax.bar(np.arange(len(kinds)) + (mi - 2) * width, rates, width, label=mat)
+            ax.bar(np.arange(len(kinds)) + (mi - (len(materials) - 1) / 2) * width, rates, width, label=mat)
         ax.set_xticks(np.arange(len(kinds)))
         ax.set_xticklabels(kinds)
         ax.set_yscale("log")

@@ -3,6 +3,6 @@
 // below: mesh/ sits under solver/, so solver's headers are not on its path.
 // Not part of any default build target.
 #include "mesh/mesh.hpp"
-#include "solver/linear_solver.hpp"
+#include "solver/newton.hpp"
 
 int upward_include_probe() { return hofem::Mesh{}.num_nodes(); }

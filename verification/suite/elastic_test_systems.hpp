@@ -4,11 +4,11 @@
 // and preconditioner must handle), a smooth right-hand side, and a
 // preconditioner's M^-1 as a dense matrix for symmetry and definiteness checks.
 #include "assembly/dof_map.hpp"
-#include "assembly/sparse_matrix.hpp"
+#include "linalg/sparse_matrix.hpp"
 #include "mesh/box_mesh.hpp"
 #include "mesh/mesh.hpp"
-#include "solver/mesh_view.hpp"
-#include "solver/preconditioner.hpp"
+#include "assembly/mesh_view.hpp"
+#include "linalg/preconditioner.hpp"
 
 #include <Eigen/Core>
 

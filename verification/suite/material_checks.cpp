@@ -402,7 +402,6 @@ void add_sensitivity_checks(Report& report, const DeformationSamples& samples) {
   struct Perturbed final : Material {
     const Corotated& base;
     Perturbed(const Corotated& b) : Material(b.lame()), base(b) {}
-    std::string_view name() const override { return "perturbed"; }
     double evaluate(const Mat3& X, Mat3* P, Mat9* dPdF) const override {
       const double psi = base.evaluate(X, P, dPdF);
       if (P) (*P)(0, 1) += 1e-4 * P->cwiseAbs().maxCoeff();

@@ -11,8 +11,9 @@
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "elastic_test_systems.hpp"
-#include "solver/krylov.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/krylov.hpp"
+#include "linalg/linear_solver.hpp"
+#include "solver/solver_factory.hpp"
 
 namespace hofem::verification {
 

@@ -7,7 +7,8 @@
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "solver/additive_schwarz.hpp"
-#include "solver/krylov.hpp"
+#include "linalg/krylov.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -168,7 +169,7 @@ TEST(AdditiveSchwarz, CgAndMinresConvergeToTheCholmodSolution) {
     KrylovOptions opt;
     opt.rtol = 1e-10;
     for (const SolverMethod method : {SolverMethod::Cg, SolverMethod::Minres}) {
-      KrylovSolver k(method, "schwarz", opt);
+      KrylovSolver k(method, make_preconditioner("schwarz"), opt);
       k.set_mesh_view(s.mesh_view());
       ASSERT_TRUE(k.factorize(s.K)) << k.name();
       k.solve(b, x);

@@ -1,10 +1,10 @@
-// BlockSparseMatrix (solver/block_sparse_matrix.hpp) against Eigen's compressed
+// BlockSparseMatrix (linalg/block_sparse_matrix.hpp) against Eigen's compressed
 // columns on an assembled stiffness matrix: the same products, the same matrix
 // back, values refreshed in place.
 #include "assembly/assembler.hpp"
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
-#include "solver/block_sparse_matrix.hpp"
+#include "linalg/block_sparse_matrix.hpp"
 
 #include <gtest/gtest.h>
 

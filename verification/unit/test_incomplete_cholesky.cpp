@@ -1,9 +1,10 @@
-// IC(0) (solver/incomplete_cholesky.hpp) on the 2-D 5-point Laplacian, whose
+// IC(0) (linalg/incomplete_cholesky.hpp) on the 2-D 5-point Laplacian, whose
 // complete Cholesky factor has fill: the incomplete factor keeps exactly A's
 // lower pattern, differs from the complete factor, and reproduces A on A's
 // pattern (the defining property of IC(0): (L L^T)(i, j) = A(i, j) there).
-#include "solver/incomplete_cholesky.hpp"
-#include "solver/preconditioner.hpp"
+#include "linalg/incomplete_cholesky.hpp"
+#include "linalg/preconditioner.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>

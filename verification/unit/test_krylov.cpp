@@ -6,9 +6,10 @@
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "problem/static_elasticity.hpp"
-#include "solver/blas_threads.hpp"
-#include "solver/krylov.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/blas_threads.hpp"
+#include "linalg/krylov.hpp"
+#include "linalg/linear_solver.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
@@ -69,7 +70,7 @@ TEST(Krylov, EveryMethodAndPreconditionerAgreesWithCholmodOnSpd) {
   opt.rtol = 1e-10;
   for (const SolverMethod method : {SolverMethod::Cg, SolverMethod::Cr, SolverMethod::Minres, SolverMethod::Gmres})
     for (const std::string& pc : serial_preconditioners()) {
-      KrylovSolver s(method, pc, opt);
+      KrylovSolver s(method, make_preconditioner(pc), opt);
       s.set_mesh_view(bar().mesh_view());
       ASSERT_TRUE(s.factorize(K)) << s.name();
       Eigen::VectorXd x;
@@ -85,7 +86,7 @@ TEST(Krylov, PreconditioningReducesIterations) {
   const SparseMatrix K = stiffness();
   const Eigen::VectorXd b = rhs(K.rows());
   auto iterations = [&](const char* pc) {
-    KrylovSolver s(SolverMethod::Cg, pc);
+    KrylovSolver s(SolverMethod::Cg, make_preconditioner(pc));
     s.factorize(K);
     Eigen::VectorXd x;
     s.solve(b, x);
@@ -108,7 +109,7 @@ TEST(Krylov, FixedIterationsStopAfterExactlyKAndAcceptTheIterate) {
   const Eigen::VectorXd x_ref = cholmod_solution(K, b);
   ASSERT_EQ(x_ref.size(), b.size());
   auto energy_error = [&](const Eigen::VectorXd& x) { return (x - x_ref).dot(K * (x - x_ref)); };
-  KrylovSolver s(SolverMethod::Cg, "jacobi");
+  KrylovSolver s(SolverMethod::Cg, make_preconditioner("jacobi"));
   ASSERT_TRUE(s.set_fixed_iterations(3));
   ASSERT_TRUE(s.factorize(K));
   Eigen::VectorXd x;
@@ -230,7 +231,7 @@ TEST(DirectSolvers, CholmodRefusesSmallIndefiniteMatrices) {
 }
 
 // The direct solvers give OpenBLAS's threads only to factorisations big enough
-// to pay for them (solver/blas_threads.hpp): the bar's (~1e7 flops) runs on one
+// to pay for them (linalg/blas_threads.hpp): the bar's (~1e7 flops) runs on one
 // thread, so no BLAS worker is left spinning beside the OpenMP loops that
 // follow; a call of kThreadedBlasMinFlops gets the pool.
 TEST(DirectSolvers, BlasThreadsOnlyForLargeFactorisations) {

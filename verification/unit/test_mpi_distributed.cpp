@@ -10,8 +10,9 @@
 #include "distributed/mesh_partition.hpp"
 #include "parallel/mpi_runtime.hpp"
 #include "solver/distributed_system.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 #include "study/manufactured_solution.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <fmt/format.h>
 

@@ -9,10 +9,12 @@
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "problem/static_elasticity.hpp"
-#include "solver/boomeramg.hpp"
-#include "solver/hypre_pcg.hpp"
-#include "solver/krylov.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/boomeramg.hpp"
+#include "linalg/hypre_pcg.hpp"
+#include "linalg/krylov.hpp"
+#include "linalg/linear_solver.hpp"
+#include "solver/boomeramg_on_mesh.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
@@ -84,7 +86,7 @@ TEST(BoomerAmg, EveryVariantWithOurCgAgreesWithCholmod) {
     for (const std::string& variant : boomeramg_variant_names()) {
       KrylovOptions opt;
       opt.rtol = kRtol;
-      KrylovSolver cg(SolverMethod::Cg, variant, opt);
+      KrylovSolver cg(SolverMethod::Cg, make_preconditioner(variant), opt);
       cg.set_mesh_view(s.mesh_view());
       ASSERT_TRUE(cg.factorize(s.K)) << c.label << " " << variant;
       Eigen::VectorXd x;
@@ -128,7 +130,7 @@ TEST(BoomerAmg, IterationsGrowAtMostFiftyPercentOverTwoRefinements) {
       std::vector<int> iterations;
       for (int n : sizes) {
         const Elasticity& s = elasticity(CellType::Tetrahedron, order, n);
-        KrylovSolver cg(SolverMethod::Cg, variant);  // relative residual 1e-8, the default
+        KrylovSolver cg(SolverMethod::Cg, make_preconditioner(variant));  // relative residual 1e-8, the default
         ASSERT_TRUE(cg.factorize(s.K));
         Eigen::VectorXd x;
         cg.solve(s.b, x);
@@ -168,7 +170,7 @@ TEST(HyprePcg, AgreesWithCholmodAndStopsOnOurRelativeResidual) {
 
       KrylovOptions opt;
       opt.rtol = rtol;
-      KrylovSolver cg(SolverMethod::Cg, "amg", opt);
+      KrylovSolver cg(SolverMethod::Cg, make_preconditioner("amg"), opt);
       ASSERT_TRUE(cg.factorize(s.K));
       cg.solve(s.b, x);
       EXPECT_LE(std::abs(pcg->last_iterations() - cg.last_iterations()), 1)
@@ -201,7 +203,7 @@ TEST(BoomerAmg, RefusesBadMatricesWithAReason) {
     M->set_mesh_view(s.mesh_view());  // and it recovers
     EXPECT_TRUE(M->setup(s.K)) << M->last_error();
   }
-  HyprePcgSolver pcg;
+  HyprePcgSolver pcg(std::make_unique<BoomerAmgOnMesh>("amg"));
   SparseMatrix bad = s.K;
   bad.valuePtr()[0] = std::numeric_limits<double>::infinity();
   EXPECT_FALSE(pcg.factorize(bad));
@@ -260,7 +262,7 @@ TEST(BoomerAmg, RigidBodyModesNeedTheMeshAndThenConverge) {
   const Elasticity& s = elasticity(CellType::Tetrahedron, 2, 3);
   BoomerAmgOptions o = boomeramg_options("amg-nodal");
   o.interp_vec_variant = 2;
-  BoomerAmgPreconditioner M("amg-rbm", o);
+  BoomerAmgOnMesh M("amg-rbm", o);
   EXPECT_FALSE(M.setup(s.K));
   EXPECT_NE(M.last_error().find("set_mesh_view"), std::string::npos) << M.last_error();
   M.set_mesh_view(s.mesh_view());

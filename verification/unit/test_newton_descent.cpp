@@ -1,8 +1,9 @@
 // Newton never walks uphill (solver/newton.cpp): on an indefinite Hessian an
 // indefinite-capable solver returns an ascent direction, which the descent test
 // must replace (projected Hessian, shift, gradient) before the line search.
-#include "solver/linear_solver.hpp"
+#include "linalg/linear_solver.hpp"
 #include "solver/newton.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,10 +6,11 @@
 #include "material/material.hpp"
 #include "mesh/box_mesh.hpp"
 #include "problem/static_elasticity.hpp"
-#include "solver/krylov.hpp"
-#include "solver/linear_solver.hpp"
+#include "linalg/krylov.hpp"
+#include "linalg/linear_solver.hpp"
 #include "solver/p_hierarchy.hpp"
 #include "solver/p_multigrid.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -189,7 +190,7 @@ struct CgRun {
 CgRun solve(const CubeSystem& s, const std::string& name, const Eigen::VectorXd& b) {
   KrylovOptions opt;
   opt.rtol = 1e-10;
-  KrylovSolver cg(SolverMethod::Cg, name, opt);
+  KrylovSolver cg(SolverMethod::Cg, make_preconditioner(name), opt);
   cg.set_mesh_view(s.mesh_view());
   EXPECT_TRUE(cg.factorize(s.K)) << name << ": " << cg.preconditioner().last_error();
   CgRun run{0, {}};

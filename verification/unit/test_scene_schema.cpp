@@ -6,6 +6,7 @@
 #include "dynamics/integrator.hpp"
 #include "material/material.hpp"
 #include "scene/scene.hpp"
+#include "linalg/boomeramg_variants.hpp"
 #include "solver/solver_spec.hpp"
 #include "study/study_file.hpp"
 

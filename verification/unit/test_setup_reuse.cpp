@@ -2,7 +2,8 @@
 // the policies of krylov.cpp on matrices whose stale set-ups cost a known amount.
 #include "elastic_test_systems.hpp"
 #include "mesh/box_mesh.hpp"
-#include "solver/krylov.hpp"
+#include "linalg/krylov.hpp"
+#include "solver/solver_factory.hpp"
 
 #include <gtest/gtest.h>
 
@@ -52,7 +53,7 @@ KrylovOptions options(double growth) {
 }
 
 TEST(SetupReuse, OffMeansASetupPerMatrix) {
-  KrylovSolver s(SolverMethod::Cg, "jacobi", options(0.0));
+  KrylovSolver s(SolverMethod::Cg, make_preconditioner("jacobi"), options(0.0));
   Eigen::VectorXd x;
   for (int k = 0; k < 3; ++k) solve(s, bar().K, x);
   EXPECT_EQ(s.factorizations(), 3);
@@ -61,7 +62,7 @@ TEST(SetupReuse, OffMeansASetupPerMatrix) {
 
 // The same matrix again: the set-up is reused and costs no iteration more.
 TEST(SetupReuse, SameMatrixReusesTheSetup) {
-  KrylovSolver s(SolverMethod::Cg, "jacobi", options(1.5));
+  KrylovSolver s(SolverMethod::Cg, make_preconditioner("jacobi"), options(1.5));
   Eigen::VectorXd x;
   const int first = solve(s, bar().K, x);
   const int second = solve(s, bar().K, x);
@@ -74,7 +75,7 @@ TEST(SetupReuse, SameMatrixReusesTheSetup) {
 // of the solve after the set-up: that solve is still answered (on the stale
 // preconditioner, within max_iterations), and the next matrix gets a new set-up.
 TEST(SetupReuse, IterationGrowthPastTheFactorTriggersANewSetup) {
-  KrylovSolver s(SolverMethod::Cg, "jacobi", options(1.5));
+  KrylovSolver s(SolverMethod::Cg, make_preconditioner("jacobi"), options(1.5));
   Eigen::VectorXd x;
   const int baseline = solve(s, bar().K, x);
   const SparseMatrix K2 = scaled(bar().K, 30.0);
@@ -94,18 +95,18 @@ TEST(SetupReuse, FailureOnAReusedSetupRetriesOnAFreshOne) {
   const SparseMatrix K2 = scaled(bar().K, 30.0);
   int base_k = 0, fresh_k2 = 0, stale_k2 = 0;
   {
-    KrylovSolver probe(SolverMethod::Cg, "jacobi", options(1e6));
+    KrylovSolver probe(SolverMethod::Cg, make_preconditioner("jacobi"), options(1e6));
     Eigen::VectorXd x;
     base_k = solve(probe, bar().K, x);
     stale_k2 = solve(probe, K2, x);
-    KrylovSolver fresh(SolverMethod::Cg, "jacobi", options(0.0));
+    KrylovSolver fresh(SolverMethod::Cg, make_preconditioner("jacobi"), options(0.0));
     fresh_k2 = solve(fresh, K2, x);
   }
   KrylovOptions o = options(1e6);
   o.max_iterations = (std::max(base_k, fresh_k2) + stale_k2) / 2;
   ASSERT_GT(o.max_iterations, std::max(base_k, fresh_k2));
   ASSERT_LT(o.max_iterations, stale_k2);
-  KrylovSolver s(SolverMethod::Cg, "jacobi", o);
+  KrylovSolver s(SolverMethod::Cg, make_preconditioner("jacobi"), o);
   Eigen::VectorXd x;
   solve(s, bar().K, x);
   const int iterations = solve(s, K2, x);
@@ -119,7 +120,7 @@ TEST(SetupReuse, FailureOnAReusedSetupRetriesOnAFreshOne) {
 TEST(SetupReuse, AmortisedKeepsASetupThatCostsNothing) {
   KrylovOptions o = options(0.0);
   o.setup_reuse = SetupReuse::Amortised;
-  KrylovSolver s(SolverMethod::Cg, "jacobi", o);
+  KrylovSolver s(SolverMethod::Cg, make_preconditioner("jacobi"), o);
   Eigen::VectorXd x;
   for (int k = 0; k < 5; ++k) solve(s, bar().K, x);
   EXPECT_EQ(s.factorizations(), 1);
@@ -133,7 +134,7 @@ TEST(SetupReuse, AmortisedKeepsASetupThatCostsNothing) {
 TEST(SetupReuse, AmortisedRebuildsWhenTheStaleSolvesCostMoreThanTheSetup) {
   KrylovOptions o = options(0.0);
   o.setup_reuse = SetupReuse::Amortised;
-  KrylovSolver s(SolverMethod::Cg, "jacobi", o);
+  KrylovSolver s(SolverMethod::Cg, make_preconditioner("jacobi"), o);
   Eigen::VectorXd x;
   solve(s, bar().K, x);
   const SparseMatrix K2 = scaled(bar().K, 30.0);
@@ -145,7 +146,7 @@ TEST(SetupReuse, AmortisedRebuildsWhenTheStaleSolvesCostMoreThanTheSetup) {
 
 // A fixed iteration budget has no count to trigger on: no reuse.
 TEST(SetupReuse, FixedIterationBudgetSetsUpEveryMatrix) {
-  KrylovSolver s(SolverMethod::Cg, "jacobi", options(1.5));
+  KrylovSolver s(SolverMethod::Cg, make_preconditioner("jacobi"), options(1.5));
   s.set_fixed_iterations(5);
   Eigen::VectorXd x;
   const Eigen::VectorXd b = verification::smooth_rhs(bar().K.rows());
