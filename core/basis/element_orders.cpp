@@ -2,32 +2,48 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <limits>
 #include <stdexcept>
 
 namespace hofem {
 
-int max_element_order(CellType cell) {
-  switch (cell) {
-    case CellType::Segment:
-    case CellType::Triangle:
-    case CellType::Tetrahedron:
-      return std::numeric_limits<int>::max();
-    case CellType::Hexahedron:
-      return 2;  // Hex8 and the serendipity Hex20 (basis/hex_bases.hpp)
-    case CellType::Quadrilateral:
-      return 0;
-  }
-  return 0;
+namespace {
+
+constexpr int kAnyOrder = std::numeric_limits<int>::max();
+
+// The element families, one row per cell: the orders its Lagrange elements
+// support and what they are. Simplices: Lagrange bases over Dubiner
+// polynomials of any order (basis/simplex_lagrange_basis.hpp); hexahedra: the
+// trilinear Hex8 and the 20-node serendipity Hex20 (basis/hex_bases.hpp).
+// Quadrilaterals have no Lagrange elements (rules only).
+struct FamilyRow {
+  CellType cell;
+  int max_order;
+  std::string_view orders;
+};
+
+constexpr std::array<FamilyRow, 5> kFamilies{{
+    {CellType::Segment, kAnyOrder, "any order >= 1"},
+    {CellType::Triangle, kAnyOrder, "any order >= 1"},
+    {CellType::Tetrahedron, kAnyOrder, "any order >= 1"},
+    {CellType::Hexahedron, 2, "order 1 (Hex8) or 2 (Hex20)"},
+    {CellType::Quadrilateral, 0, "no Lagrange elements"},
+}};
+
+const FamilyRow& row(CellType cell) {
+  for (const FamilyRow& r : kFamilies)
+    if (r.cell == cell) return r;
+  throw std::logic_error("element_orders: unknown CellType");
 }
+
+}  // namespace
+
+int max_element_order(CellType cell) { return row(cell).max_order; }
 
 bool supports_order(CellType cell, int order) { return order >= 1 && order <= max_element_order(cell); }
 
-std::string supported_orders(CellType cell) {
-  if (cell == CellType::Hexahedron) return "order 1 (Hex8) or 2 (Hex20)";
-  if (max_element_order(cell) == 0) return "no Lagrange elements";
-  return "any order >= 1";
-}
+std::string supported_orders(CellType cell) { return std::string(row(cell).orders); }
 
 void check_element_order(CellType cell, int order, const std::string& what) {
   if (!supports_order(cell, order))

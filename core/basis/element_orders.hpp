@@ -4,7 +4,7 @@
 // (Tet4, Tet10, Tet20, Hex8, Hex20). Simplices take any order >= 1 (Lagrange
 // bases over Dubiner polynomials); the input cap on the order
 // (io/input_file.hpp) bounds them apart from this rule. Hexahedra have Hex8
-// and the 20-node serendipity Hex20 only.
+// and the 20-node serendipity Hex20 only. One table: element_orders.cpp.
 #include "quadrature/cell_type.hpp"
 
 #include <string>

@@ -30,7 +30,9 @@ MassModel::MassModel(const Discretization& disc, double density, MassKind kind, 
   Ms_ = disc.assembler().nodal_mass_matrix(density, degree);
   ++matrices_built_;
   if (factorize) {
-    solver_ = make_linear_solver("cholmod");
+    SolverSpec direct;  // the consistent mass is SPD and factorised once: CHOLMOD
+    direct.method = SolverMethod::Cholmod;
+    solver_ = make_linear_solver(direct);
     factorize_free();
   }
 }

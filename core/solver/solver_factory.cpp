@@ -13,13 +13,26 @@
 #include "linalg/krylov.hpp"
 #include "linalg/umfpack_solver.hpp"
 #include "solver/additive_schwarz.hpp"
-#include "solver/boomeramg_on_mesh.hpp"
+#include "linalg/boomeramg.hpp"
 #include "solver/p_multigrid.hpp"
 #include "solver/solver_registry.hpp"
 
 namespace hofem {
 
 namespace {
+
+// The "amg..." preconditioners where the mesh is known: BoomerAMG
+// (linalg/boomeramg.hpp) told which DOF each matrix row is - so that it can
+// check the node-interleaved layout hypre's systems AMG assumes - and, for
+// variants with interpolation vectors, the rigid rotations of the free nodes.
+class BoomerAmgOnMesh final : public BoomerAmgPreconditioner {
+ public:
+  explicit BoomerAmgOnMesh(const std::string& variant) : BoomerAmgPreconditioner(variant, boomeramg_options(variant)) {}
+  void set_mesh_view(const MeshView& d) override {
+    if (!d.valid()) return;
+    set_row_layout(d.dofs->free_dofs(), amg().options().interp_vec_variant > 0 ? rigid_rotations(d) : Eigen::MatrixXd());
+  }
+};
 
 std::unique_ptr<Preconditioner> make_of_kind(PreconditionerKind kind, std::string_view name) {
   switch (kind) {
