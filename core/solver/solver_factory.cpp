@@ -34,6 +34,12 @@ class BoomerAmgOnMesh final : public BoomerAmgPreconditioner {
   }
 };
 
+// A registered BoomerAMG variant told its DOF layout by the mesh view: the
+// "amg..." preconditioners and hypre's PCG's.
+std::unique_ptr<BoomerAmgPreconditioner> make_boomeramg(const std::string& variant) {
+  return std::make_unique<BoomerAmgOnMesh>(variant);
+}
+
 std::unique_ptr<Preconditioner> make_of_kind(PreconditionerKind kind, std::string_view name) {
   switch (kind) {
     case PreconditionerKind::Identity:
@@ -47,7 +53,7 @@ std::unique_ptr<Preconditioner> make_of_kind(PreconditionerKind kind, std::strin
     case PreconditionerKind::EigenIct:
       return make_eigen_ict_preconditioner();
     case PreconditionerKind::BoomerAmg:
-      return std::make_unique<BoomerAmgOnMesh>(std::string(name));
+      return make_boomeramg(std::string(name));
     case PreconditionerKind::PMultigrid:
       return std::make_unique<PMultigridPreconditioner>();
     case PreconditionerKind::Schwarz:
@@ -80,8 +86,7 @@ std::unique_ptr<LinearSolver> make_unbudgeted(const SolverSpec& spec) {
     case SolverMethod::Umfpack:
       return std::make_unique<UmfpackSolver>();
     case SolverMethod::HyprePcg:
-      return std::make_unique<HyprePcgSolver>(std::make_unique<BoomerAmgOnMesh>(
-          spec.preconditioner.empty() ? std::string(boomeramg_variants().front().name) : spec.preconditioner));
+      return std::make_unique<HyprePcgSolver>(make_boomeramg(spec.preconditioner));  // "amg" (SolverSpec::parse)
     case SolverMethod::Cg:
     case SolverMethod::Cr:
     case SolverMethod::Minres:

@@ -11,8 +11,8 @@ import collections
 import math
 
 from claims_check import check
-from claims_size import (BALL_REFERENCE_UNKNOWNS, SLINGSHOT_ELEMENTS, TABLE1_COUNTS, TABLE1_MS, TABLE1_UNKNOWNS, part,
-                         size, timing)
+from claims_size import (BALL_REFERENCE_UNKNOWNS, SLINGSHOT_ELEMENTS, TABLE1_COUNTS, TABLE1_MS, TABLE1_UNKNOWNS, cells,
+                         part, size, timing)
 
 THRESHOLD = 0.003  # the twisting cylinder's scaled threshold (above)
 
@@ -321,7 +321,7 @@ def slingshot_rows(R):
         pts = fcm["quadrature_points"] / fem["quadrature_points"]
         seed_elements = SLINGSHOT_ELEMENTS[0 if n == sizes[0] else 1]
         sz = size(part("Tet10 FEM", fem["elements"], seed_elements, "elements"),
-                  part("Tet10 FCM", fcm.get("active_cells", fcm["elements"]), seed_elements, "elements"))
+                  part("Tet10 FCM", cells(fcm), seed_elements, "elements"))
         rows.append({
             "id": f"slingshot.time_fcm_over_fem.{'coarse' if n == sizes[0] else 'fine'}", "source": src,
             "quantity": f"time per step, Tet10 FCM / Tet10 FEM, {label}", "paper_value": [1.15, 1.25],

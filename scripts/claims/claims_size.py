@@ -31,6 +31,11 @@ THESIS_HESSIAN_ROWS = (5310, 14172)
 THESIS_DROP_UNKNOWNS = 3 * 20
 
 
+def cells(run):
+    """A run's elements that carry unknowns: a finite-cell run's active cells, else its elements."""
+    return run.get("active_cells") or run["elements"]
+
+
 def part(what, measured, seed, unit="unknowns"):
     """One run a row reads: hofem's count against the seed's (None: not given)."""
     return {"what": what, "measured": int(measured), "seed": None if seed is None else int(seed), "unit": unit}

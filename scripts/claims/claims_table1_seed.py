@@ -8,7 +8,7 @@ import math
 
 from claims_check import check
 from claims_longva import table1_rows, ratio_row, time_at
-from claims_size import TABLE1_COUNTS, TABLE1_MS, TABLE1_UNKNOWNS, part, size, timing
+from claims_size import TABLE1_COUNTS, TABLE1_MS, TABLE1_UNKNOWNS, cells, part, size, timing
 
 SEED_THRESHOLD = 0.015  # Longva et al. 2020 §6.2: surface RMS at the final step
 # hofem's run at the seed's Tet10 resolution: 17,664 elements / 29,600 nodes
@@ -168,12 +168,12 @@ def table1_side_by_side(R):
                 lines.append(f"| {family} | {elements:,} | {nodes:,} | {TABLE1_MS[family]:,.0f} | — | — | — | not run | |")
                 continue
             # A finite-cell run's elements are its active cells (the seed counts those).
-            cells = [r.get("active_cells") or r["elements"] for r in runs]
+            counts = [cells(r) for r in runs]
             if len(runs) == 2:
                 a = math.log(n / runs[0]["unknowns"]) / math.log(runs[1]["unknowns"] / runs[0]["unknowns"])
-                el = math.exp(math.log(cells[0]) + a * math.log(cells[1] / cells[0]))
+                el = math.exp(math.log(counts[0]) + a * math.log(counts[1] / counts[0]))
             else:
-                el = cells[0]
+                el = counts[0]
             ours = (round(el), n / 3, t * 1e3, kind, ", ".join(r["name"] for r in runs))
         lines.append(f"| {family} | {elements:,} | {nodes:,} | {TABLE1_MS[family]:,.0f} | {ours[0]:,} | {ours[1]:,.0f} "
                      f"| {ours[2]:,.0f} | {ours[3]} | {ours[4]} |")
@@ -201,9 +201,9 @@ def table1_at_seed_resolution(R):
             continue
         elements, nodes = TABLE1_COUNTS[base]
         runs = [r for r in tc["runs"] if r["ok"] and r["family"] == family]
-        r = min(runs, key=lambda r: abs(math.log((r.get("active_cells") or r["elements"]) / elements)))
+        r = min(runs, key=lambda r: abs(math.log(cells(r) / elements)))
         lines.append(f"| {family} | {elements:,} | {nodes:,} | {TABLE1_MS[base]:,.0f} | {r['name']} "
-                     f"| {r.get('active_cells') or r['elements']:,} | {r['unknowns'] // 3:,} "
+                     f"| {cells(r):,} | {r['unknowns'] // 3:,} "
                      f"| {r['unknowns'] / TABLE1_UNKNOWNS[base]:.2f} | {r['time_per_step_median'] * 1e3:,.0f} "
                      f"| {r['metric']:.3g} |")
     return lines
@@ -236,10 +236,10 @@ def table1_explanation(R):
             continue
         for r in runs:
             steps = max(r["steps"], 1)
-            cells = r.get("active_cells") or r["elements"]
+            n_cells = cells(r)
             per = lambda key: r.get(key, 0) / steps
             lines.append(f"| {family} ({kind}) | {r['name']} | {r['linear_solver']} | {r['unknowns']:,} "
-                         f"| {r.get('hessian_nonzeros', 0):,} | {r['quadrature_points'] / cells:.1f} "
+                         f"| {r.get('hessian_nonzeros', 0):,} | {r['quadrature_points'] / n_cells:.1f} "
                          f"| {per('newton_iterations'):.2f} | {per('linear_iterations'):.1f} "
                          f"| {per('setup_seconds'):.3g} | {per('assembly_seconds'):.3g} | {per('solve_seconds'):.3g} "
                          f"| {r['time_per_step_median']:.3g} | {r['metric']:.3g} |")
