@@ -125,6 +125,9 @@ int parse_command_line(int argc, const char* const* argv, CommandLine& out, std:
   study->add_flag("--resume", so.resume,
                   "Keep each finished run's record under OUT/runs/NAME and reuse it when the run's scene is unchanged; "
                   "a run stopped part-way continues from its checkpoint (every 120 s)");
+  study->add_flag("--extended", so.extended,
+                  "Run the runs marked \"extended\" too (the costliest rungs; without it they are reported only from a "
+                  "stored measurement)");
 
   auto* choices = app.add_subcommand("choices", "List what a scene or command can name: materials, integrators, "
                                                 "linear solvers, preconditioners, element orders (from their registries)");

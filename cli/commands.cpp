@@ -442,7 +442,7 @@ int run_study_file(const StudyOptions& o) {
   }
   const std::string out = o.out.empty() ? "reports/studies/" + study.name : o.out;
   try {
-    const nlohmann::json j = run_study(study, out, {.progress = true, .resume = o.resume});
+    const nlohmann::json j = run_study(study, out, {.progress = true, .resume = o.resume, .extended = o.extended});
     fmt::print("study {}: {} runs -> {}/study.json\n", study.name, j["runs"].size(), out);
   } catch (const SceneError& e) {
     fmt::print(stderr, "hofem: error: {}\n", e.what());

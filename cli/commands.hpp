@@ -107,6 +107,7 @@ struct StudyOptions {
   std::string out;                  ///< default: reports/studies/NAME (NAME from the study file)
   std::vector<std::string> limits;  ///< --limit NAME=VALUE
   bool resume = false;              ///< --resume: reuse finished runs' records, continue stopped runs
+  bool extended = false;            ///< --extended: run the study's "extended" runs too
 };
 /// Runs a study (core/study/study_file.hpp) and writes study.json and summary.md.
 /// Exit status 0 when the study ran (runs that fail are rows of the table), 2 for

@@ -30,6 +30,42 @@ std::shared_ptr<const ElementQuadrature> empty_rule(CellType cell, int order) {
   return make_rule(cell, order, Eigen::MatrixXd(3, 0), Eigen::VectorXd());
 }
 
+// The clipped rule of one cell at `degree`, in reference coordinates: w_ref = w / |det A| (eq. 11-12).
+// Both finite_cell_quadrature and finite_cell_volume_fractions sum these weights in this order,
+// so the volume fractions they report agree to the last bit.
+std::pair<Eigen::MatrixXd, Eigen::VectorXd> clipped_reference_rule(std::span<const Tetrahedron> geometry,
+                                                                   const std::vector<int>& candidates,
+                                                                   const std::vector<HalfSpace>& planes,
+                                                                   const AffineCell& map, int degree) {
+  const double jac = std::abs(map.A.determinant());
+  PhysicalRule r;
+  for (int k : candidates) add_clipped_rule(geometry[k], planes, degree, r);
+  Eigen::MatrixXd xi(3, r.size());
+  Eigen::VectorXd w(r.size());
+  for (int q = 0; q < r.size(); ++q) {
+    const Eigen::Vector3d x = map.reference(r.points[q]);
+    // Component by component: GCC 12 reports a false -Warray-bounds on the
+    // AVX-512 packet copy of a Vector3d into a dynamic matrix's column.
+    for (int k = 0; k < 3; ++k) xi(k, q) = x[k];
+    w[q] = r.weights[q] / jac;
+  }
+  return {std::move(xi), std::move(w)};
+}
+
+double reference_cell_volume(CellType cell) { return cell == CellType::Tetrahedron ? 1.0 / 6.0 : 8.0; }
+
+// The geometry's tetrahedra that may meet background cell e (bounding boxes).
+std::vector<int> cell_candidates(const Mesh& background, int e, const BoxBucketGrid& grid) {
+  const Eigen::Matrix3Xd vertices =
+      background.nodes(Eigen::all, background.elements.col(e).head(background.vertices_per_element()));
+  return grid.candidates(vertices.rowwise().minCoeff(), vertices.rowwise().maxCoeff());
+}
+
+void check_background(const Mesh& background) {
+  if (background.cell != CellType::Tetrahedron && background.cell != CellType::Hexahedron)
+    throw std::invalid_argument("finite_cell_quadrature: the background must be a tetrahedral or hexahedral mesh");
+}
+
 }  // namespace
 
 AffineFit fit_affine_cell(const Mesh& mesh, int e) {
@@ -90,8 +126,7 @@ std::vector<HalfSpace> cell_half_spaces(CellType cell, const AffineCell& map) {
 
 CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Tetrahedron> geometry,
                                       const FiniteCellOptions& options) {
-  if (background.cell != CellType::Tetrahedron && background.cell != CellType::Hexahedron)
-    throw std::invalid_argument("finite_cell_quadrature: the background must be a tetrahedral or hexahedral mesh");
+  check_background(background);
   const CellType cell = background.cell;
   const int p = background.order, ne = background.num_elements();
   CellQuadrature out;
@@ -114,7 +149,7 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
   std::vector<char> failed(ne, 0), fit_failed(ne, 0);
   std::vector<int> mass_clipped(ne, 0);
   std::vector<double> fit_residual(ne, 0.0), fit_ratio(ne, 0.0);
-  const double reference_volume = cell == CellType::Tetrahedron ? 1.0 / 6.0 : 8.0;
+  const double reference_volume = reference_cell_volume(cell);
 
   // Cells are independent; dynamic schedule because cut cells cost far more.
 #pragma omp parallel for schedule(dynamic, 4)
@@ -122,22 +157,9 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
     const auto tc = Clock::now();
     const AffineCell& map = maps[e];
     const std::vector<HalfSpace> planes = cell_half_spaces(cell, map);
-    const Eigen::Matrix3Xd vertices =
-        background.nodes(Eigen::all, background.elements.col(e).head(background.vertices_per_element()));
-    const std::vector<int> candidates = grid.candidates(vertices.rowwise().minCoeff(), vertices.rowwise().maxCoeff());
-    const double jac = std::abs(map.A.determinant());
-    // Clipped rules of both strengths, in reference coordinates: w_ref = w / |det A| (eq. 11-12).
-    auto clipped = [&](int degree) {
-      PhysicalRule r;
-      for (int k : candidates) add_clipped_rule(geometry[k], planes, degree, r);
-      Eigen::MatrixXd xi(3, r.size());
-      Eigen::VectorXd w(r.size());
-      for (int q = 0; q < r.size(); ++q) {
-        xi.col(q) = map.reference(r.points[q]);
-        w[q] = r.weights[q] / jac;
-      }
-      return std::pair{std::move(xi), std::move(w)};
-    };
+    const std::vector<int> candidates = cell_candidates(background, e, grid);
+    // Clipped rules of both strengths, in reference coordinates.
+    auto clipped = [&](int degree) { return clipped_reference_rule(geometry, candidates, planes, map, degree); };
     auto [xs, ws] = clipped(out.stiffness_degree);
     const double fraction = ws.sum() / reference_volume;
     out.volume_fraction[e] = fraction;
@@ -200,6 +222,39 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
   o.simplify = false;
   o.standard_rule_inside = false;
   return finite_cell_quadrature(background, geometry, o);
+}
+
+std::vector<double> finite_cell_volume_fractions(const Mesh& background, std::span<const Tetrahedron> geometry,
+                                                 const FiniteCellOptions& options) {
+  check_background(background);
+  const CellType cell = background.cell;
+  const int ne = background.num_elements();
+  const int degree = options.stiffness_degree >= 0
+                         ? options.stiffness_degree
+                         : default_quadrature_degrees(cell, background.order, IntegrationDomain::CutCell).stiffness;
+  std::vector<AffineCell> maps;
+  maps.reserve(ne);
+  for (int e = 0; e < ne; ++e) maps.push_back(affine_cell(background, e));
+  const BoxBucketGrid grid(bounding_boxes(geometry));
+  std::vector<double> fraction(ne, 0.0);
+#pragma omp parallel for schedule(dynamic, 4)
+  for (int e = 0; e < ne; ++e) {
+    const auto [xi, w] =
+        clipped_reference_rule(geometry, cell_candidates(background, e, grid), cell_half_spaces(cell, maps[e]), maps[e], degree);
+    fraction[e] = w.sum() / reference_cell_volume(cell);
+  }
+  return fraction;
+}
+
+std::vector<char> finite_cell_active(const std::vector<double>& volume_fraction, double drop_fraction) {
+  std::vector<char> active(volume_fraction.size());
+  // stabilise_finite_cells: a cut cell (0 < f < 1 - 1e-12) under drop_fraction is dropped;
+  // a cell the geometry misses (f = 0) has an empty rule; every other cell integrates.
+  for (size_t e = 0; e < volume_fraction.size(); ++e) {
+    const double f = volume_fraction[e];
+    active[e] = f > 0.0 && (f >= drop_fraction || f >= 1.0 - 1e-12);
+  }
+  return active;
 }
 
 StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& cells,

@@ -125,6 +125,19 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
 /// simplification (the raw §4.5 rules).
 CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Tetrahedron> geometry, int degree);
 
+/// Per background cell, the volume fraction finite_cell_quadrature(background,
+/// geometry, options) reports (the same clipped rule of the stiffness degree,
+/// summed in the same order: equal to the last bit), without making any rule.
+/// What a finished run's measurement needs to know which cells are active, where
+/// the rules' tabulation may not fit: the unsimplified Hex20 cylinder of Longva et
+/// al. 2020 §6.3 at the seed's size has 32.5 M stiffness points, ~21 GB tabulated.
+std::vector<double> finite_cell_volume_fractions(const Mesh& background, std::span<const Tetrahedron> geometry,
+                                                 const FiniteCellOptions& options = {});
+/// Per cell: it integrates something after stabilise_finite_cells with this
+/// drop_fraction (uncut, or cut and kept); false where the geometry misses it or
+/// it was dropped. The one definition of "active" (SceneEmbedding, the study's measurements).
+std::vector<char> finite_cell_active(const std::vector<double>& volume_fraction, double drop_fraction);
+
 /// Longva et al. 2020 §5.3, applied to the rules of finite_cell_quadrature:
 ///  - cells whose volume fraction is positive but below drop_fraction are
 ///    dropped (their rules emptied; listed in `dropped`): a sliver's stiffness is

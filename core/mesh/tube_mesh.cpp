@@ -1,6 +1,7 @@
 #include "mesh/tube_mesh.hpp"
 
 #include "mesh/box_mesh.hpp"
+#include "mesh/mesh_upgrade.hpp"
 
 #include <fmt/format.h>
 
@@ -78,12 +79,14 @@ Mesh mapped_mesh(const Mesh& box, std::initializer_list<int> seams, double size,
 }  // namespace
 
 Mesh hollow_cylinder_mesh(double r_in, double r_out, double height, int n_r, int n_theta, int n_z, CellType cell,
-                          int order) {
+                          int order, bool curved) {
   if (!(r_in > 0.0 && r_out > r_in && height > 0.0) || n_r < 1 || n_z < 1 || n_theta < 3)
     throw std::invalid_argument(fmt::format(
         "hollow_cylinder_mesh: needs 0 < r_in < r_out, height > 0, n_r, n_z >= 1, n_theta >= 3 (got r_in = {}, "
         "r_out = {}, height = {}, n = {} x {} x {})",
         r_in, r_out, height, n_r, n_theta, n_z));
+  if (!curved && order > 1)
+    return upgrade_order(hollow_cylinder_mesh(r_in, r_out, height, n_r, n_theta, n_z, cell, 1), order);
   const Mesh box = box_mesh(BoxSpec{{r_in, 0.0, 0.0}, {r_out, 2.0 * M_PI, height}, {n_r, n_theta, n_z}}, cell, order);
   return mapped_mesh(
       box, {1}, std::max(r_out, height),

@@ -96,6 +96,7 @@ struct SceneShape {
   bool torus = false; ///< hollow torus about z (mesh/tube_mesh.hpp); tube_r_in/out are its tube's radii
   double torus_major_radius = 1.0;
   double tube_r_in = 0.5, tube_r_out = 1.0, tube_height = 1.0;
+  bool tube_curved = true;  ///< tube, order >= 2: nodes on the circles (false: straight-sided elements)
   Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Ones();
   Eigen::Vector3i cells = Eigen::Vector3i::Constant(2);  ///< box: per axis; tube: radial, around, along z; torus: radial, around z, around the tube
 };

@@ -81,8 +81,7 @@ SceneEmbedding::SceneEmbedding(const Scene& s, const Mesh& background) : backgro
 
   // The surface, located in the cells that integrate something (null = uncut).
   surface_ = boundary_surface(geometry);
-  active_.resize(ne);
-  for (int e = 0; e < ne; ++e) active_[e] = !cells_.rules[e] || cells_.rules[e]->rule.size() > 0;
+  active_ = finite_cell_active(cells_.volume_fraction, options.drop_fraction);
   try {
     surface_map_ = locate_embedded_points(background, surface_.nodes, active_);
   } catch (const std::invalid_argument& e) {  // every cell empty or dropped
@@ -144,6 +143,22 @@ void SceneEmbedding::write_frame(const std::string& dir, const std::string& name
 
 void SceneEmbedding::write_pvd(const std::string& dir, const std::string& name) const {
   hofem::write_pvd((std::filesystem::path(dir) / (name + "_surface.pvd")).string(), frames_);
+}
+
+EmbeddedGeometry embedded_geometry(const Scene& s, const Mesh& background) {
+  const SceneEmbedded& options = s.embedded.value();
+  const Mesh geometry = build_embedded_mesh(s);
+  const std::vector<Tetrahedron> tets = mesh_tetrahedra(geometry);
+  FiniteCellOptions fc;
+  fc.stiffness_degree = options.stiffness_degree;  // the degree SceneEmbedding clips at: the same fractions
+  std::vector<double> fraction;
+  try {
+    fraction = finite_cell_volume_fractions(background, tets, fc);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(
+        fmt::format("{}: mesh: {} (the background of an embedded scene needs affine cells)", s.file, e.what()));
+  }
+  return {boundary_surface(geometry), finite_cell_active(fraction, options.drop_fraction)};
 }
 
 }  // namespace hofem

@@ -64,4 +64,14 @@ class SceneEmbedding {
   std::vector<std::pair<double, std::string>> frames_;
 };
 
+/// What measuring a finished finite-cell run needs of its embedding: the
+/// geometry's surface and the active background cells, equal to SceneEmbedding's,
+/// without the finite-cell rules (no rule is made or tabulated, so a run whose
+/// rules took 24 GB can be measured in a fraction of that).
+struct EmbeddedGeometry {
+  Mesh surface;
+  std::vector<char> active;
+};
+EmbeddedGeometry embedded_geometry(const Scene& scene, const Mesh& background);
+
 }  // namespace hofem

@@ -53,7 +53,7 @@ Mesh generated_or_read(const SceneShape& g, CellType cell, int order, const Scen
                              cell, order);
   if (g.tube)
     return hollow_cylinder_mesh(g.tube_r_in, g.tube_r_out, g.tube_height, g.cells.x(), g.cells.y(), g.cells.z(), cell,
-                                order);
+                                order, g.tube_curved);
   if (g.file.empty())
     return box_mesh(BoxSpec{{g.box_min.x(), g.box_min.y(), g.box_min.z()},
                             {g.box_max.x(), g.box_max.y(), g.box_max.z()},

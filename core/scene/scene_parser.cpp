@@ -43,8 +43,9 @@ void parse_shape(const Field& m, SceneShape& shape, const std::string& scene_fil
     shape.cells << c.item(0).integer(1, 1000), c.item(1).integer(3, 10000), c.item(2).integer(3, 10000);
   } else if (m.has("tube")) {
     const Field t = m.at("tube");
-    t.keys({"r_in", "r_out", "height", "cells"});
+    t.keys({"r_in", "r_out", "height", "cells", "curved"});
     shape.tube = true;
+    if (t.has("curved")) shape.tube_curved = t.at("curved").boolean();
     shape.tube_r_in = t.at("r_in").number(0.0, 1e300, true);
     shape.tube_r_out = t.at("r_out").number(shape.tube_r_in, 1e300, true);
     shape.tube_height = t.at("height").number(0.0, 1e300, true);

@@ -82,10 +82,12 @@ std::optional<RecordedRun> stored_run(const Scene& scene, const std::string& dir
   read_recorded(dir, j.at("files"), run, steps, std::numeric_limits<int>::max());
   run.mesh = build_scene_mesh(scene);
   if (scene.embedded) {
-    const SceneEmbedding emb(scene, run.mesh);
-    run.embedded_surface = emb.surface();
-    run.active = emb.active_cells();
-    run.own_rules = emb.element_rules().mass;
+    // The surface and active cells only: the rules are not needed to measure a
+    // run, and an unsimplified run's would not fit (embedded_geometry). A stored
+    // reference gets its mass rules from add_own_rules.
+    EmbeddedGeometry g = embedded_geometry(scene, run.mesh);
+    run.embedded_surface = std::move(g.surface);
+    run.active = std::move(g.active);
   }
   run.stats = j.at("stats");
   run.ok = j.at("ok").get<bool>();
@@ -95,6 +97,12 @@ std::optional<RecordedRun> stored_run(const Scene& scene, const std::string& dir
 }
 
 }  // namespace
+
+void add_own_rules(RecordedRun& run, const Scene& scene) {
+  if (!scene.embedded || !run.own_rules.empty()) return;
+  const SceneEmbedding emb(scene, run.mesh);
+  run.own_rules = emb.element_rules().mass;
+}
 
 std::string record_key(const Scene& scene, const std::vector<double>& frame_times) {
   return scene_fingerprint(scene) + ":" + json(frame_times).dump();

@@ -54,6 +54,12 @@ RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std
 // provenance: a study asked to resume after a change of the code reuses them
 // (the study's rows say which runs were stored).
 
+/// A finite-cell run taken from its record (stored) has its surface and active
+/// cells but not its rules; a reference needs its cells' mass rules to integrate
+/// over the geometry (ReferenceMeasure): this builds them (SceneEmbedding). No-op
+/// for other runs and for runs that have them.
+void add_own_rules(RecordedRun& run, const Scene& scene);
+
 /// What a run's record is keyed by: its scene's fingerprint (scene_fingerprint.hpp)
 /// and the recorded times.
 std::string record_key(const Scene& scene, const std::vector<double>& frame_times);

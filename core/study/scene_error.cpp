@@ -14,6 +14,9 @@ SurfaceLattice run_surface_lattice(const RecordedRun& run, int subdivisions) {
 
 ReferenceMeasure::ReferenceMeasure(const RecordedRun& reference, int subdivisions)
     : reference_(reference) {
+  if (reference.embedded_surface && reference.own_rules.empty())
+    throw std::invalid_argument("ReferenceMeasure: a finite-cell reference taken from its record needs its mass rules "
+                                "(add_own_rules)");
   const int degree = reference.mesh.order + 1;
   quadrature_ = body_quadrature(reference.mesh, degree, reference.own_rules);
   const SurfaceLattice lattice = run_surface_lattice(reference, subdivisions);

@@ -178,6 +178,9 @@ std::string summary_markdown(const json& study) {
     md += fmt::format("\n**Incomplete** (stopped, or still running): the runs still to come are {}; the verdicts below "
                       "are of the runs above only.\n",
                       study["pending"].dump());
+  if (!study.value("left_out", json::array()).empty())
+    md += fmt::format("\nLeft out (the study's extended tier, run by `hofem study --extended`; not measured yet): {}.\n",
+                      study["left_out"].dump());
   md += fmt::format("\nCheapest run (median time per step) with {} (max over frames) under each threshold:\n\n", metric);
   for (const json& c : study["cheapest"]) {
     md += fmt::format("- {} <= {:.3g}: ", metric, c["threshold"].get<double>());
@@ -243,7 +246,10 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
   // left out of both sides, so a resumed study's rate is this session's.
   double total_work = estimated_work(s.reference.scene), done_work = 0.0, stored_work = 0.0;
   if (s.coarser_reference) total_work += estimated_work(s.coarser_reference->scene);
-  for (const StudyRun& r : s.runs) total_work += estimated_work(r.scene);
+  // Runs of the extended tier count only when asked for (StudyRunOptions::extended).
+  const auto to_run = [&](const StudyRun& r) { return !r.extended || options.extended; };
+  for (const StudyRun& r : s.runs)
+    if (to_run(r)) total_work += estimated_work(r.scene);
   const auto share = [&](double work) {
     return std::clamp((work - stored_work) / std::max(total_work - stored_work, 1e-300), 0.0, 1.0);
   };
@@ -267,7 +273,8 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
     return run;
   };
   // 1. The reference, its measuring data and floor, and its own error from the coarser level.
-  const RecordedRun reference = record(s.reference);
+  RecordedRun reference = record(s.reference);
+  add_own_rules(reference, s.reference.scene);
   if (!reference.ok)
     throw SceneError(fmt::format("{}: reference: the reference run failed: {}", s.file, reference.message));
   const ReferenceMeasure measure(reference, s.subdivisions);
@@ -288,7 +295,7 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
     const std::string dir = (out / "runs" / r.name).string();
     if (options.resume)
       if (const std::optional<StoredMeasure> m = stored_measure(r.scene, dir, s.frames, measure_key)) {
-        finished(r, true);
+        if (to_run(r)) finished(r, true);  // a left-out run was never part of the ETA's work
         say(fmt::format("{}: stored measurement of an earlier run (same scene, same reference)", r.name));
         json row = describe(r, m->stats, true, "", true);
         row.update(m->errors);
@@ -323,9 +330,12 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
   // The study's files, written after every run (a stopped study leaves the rows
   // it has, "complete": false and the runs still to come).
   json runs = json::array();
+  json left_out = json::array();  // extended runs neither asked for nor found measured
+  size_t next = 0;                // s.runs[next] is the next run to look at
   auto study_json = [&](bool complete) {
     json pending = json::array();
-    for (size_t k = runs.size(); k < s.runs.size(); ++k) pending.push_back(s.runs[k].name);
+    for (size_t k = next; k < s.runs.size(); ++k)
+      if (to_run(s.runs[k])) pending.push_back(s.runs[k].name);
     // The study's cost over all the sessions that made it: each run's own wall
     // time (stored runs keep theirs; a coarser level shared with a run counts once).
     double run_seconds = ref_row.value("total_seconds", 0.0) + (coarser_row ? coarser_row->value("total_seconds", 0.0) : 0.0);
@@ -345,6 +355,7 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
                 {"runs", runs},
                 {"complete", complete},
                 {"pending", pending},
+                {"left_out", left_out},
                 {"cheapest", cheapest_of(runs, s.thresholds, s.metric)},
                 {"run_seconds", run_seconds},
                 {"wall_seconds", seconds_since(t0)}};
@@ -355,8 +366,20 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
   };
 
   // 2. Each run, then its errors against the reference.
-  for (const StudyRun& r : s.runs) {
+  for (; next < s.runs.size(); ++next) {
+    const StudyRun& r = s.runs[next];
     json row;
+    if (!to_run(r)) {
+      // The extended tier, not asked for: reported only from a stored measurement.
+      const std::optional<StoredMeasure> m =
+          options.resume ? stored_measure(r.scene, (out / "runs" / r.name).string(), s.frames, measure_key)
+                         : std::nullopt;
+      if (!m) {
+        left_out.push_back(r.name);
+        say(fmt::format("{}: extended run, left out (hofem study --extended runs it)", r.name));
+        continue;
+      }
+    }
     if (coarser_row && record_key(r.scene, s.frames) == coarser_key) {
       finished(r, true);
       row = *coarser_row;
@@ -376,8 +399,13 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
     } else {
       say(fmt::format("{} failed: {}", r.name, row["message"].get<std::string>()));
     }
+    row["extended"] = r.extended;
     runs.push_back(row);
-    if (runs.size() < s.runs.size()) write_files(study_json(false));
+    if (next + 1 < s.runs.size()) {
+      ++next;  // this run is done: not pending in the files written now
+      write_files(study_json(false));
+      --next;
+    }
   }
 
   // 3. The table, the cheapest runs, the files.

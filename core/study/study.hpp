@@ -29,6 +29,9 @@ struct StudyRunOptions {
   /// instead of running again when the run's scene is unchanged; a run stopped
   /// part-way continues from its checkpoint (study/recorded_run.hpp).
   bool resume = false;
+  /// Run the runs marked "extended" too. Without it they are reported from a
+  /// stored measurement (resume) when there is one, else listed as left out.
+  bool extended = false;
 };
 
 /// Runs the study and writes its files into out_dir; returns study.json's content.

@@ -40,12 +40,13 @@ Scene run_scene_of(const Study& s, const Field& where, const SceneOverrides& own
 
 StudyRun parse_run(const Field& f, const Study& s, bool reference) {
   if (reference) f.keys({"name", "overrides", "coarser"});
-  else f.keys({"name", "family", "overrides"});
+  else f.keys({"name", "family", "overrides", "extended"});
   StudyRun r;
   r.name = reference && !f.has("name") ? "reference" : run_name(f.at("name"));
   r.family = reference ? "reference" : f.at("family").string();
   if (r.family.empty()) f.at("family").fail("must not be empty");
   if (f.has("overrides")) r.overrides = strings(f.at("overrides"));
+  if (!reference && f.has("extended")) r.extended = f.at("extended").boolean();
   r.scene = run_scene_of(s, f.has("overrides") ? f.at("overrides") : f, r.overrides);
   return r;
 }

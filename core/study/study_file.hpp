@@ -21,6 +21,8 @@
 //                                       replacing the reference's, for the Richardson
 //                                       estimate of the reference's own error)
 //   "runs": [{"name": "tet4-a", "family": "Tet4 FEM", "overrides": ["mesh.order=1"]}, ...]
+//            ("extended": true on a run: run only by `hofem study --extended`, for the
+//             costliest rungs of a ladder that a time-budgeted job leaves out)
 // }
 #include "scene/scene.hpp"
 
@@ -35,6 +37,9 @@ struct StudyRun {
   std::string family;      ///< the plot's marker ("Tet10 FEM")
   SceneOverrides overrides;
   Scene scene;             ///< the scene with the study's and the run's overrides, validated
+  /// Run only when asked (StudyRunOptions::extended); otherwise a stored
+  /// measurement of it is still reported, and without one it is listed as left out.
+  bool extended = false;
 };
 
 struct Study {

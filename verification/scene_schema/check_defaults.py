@@ -21,8 +21,9 @@ import jsonschema
 # Required keys: printed with the C++ struct's initial values, no schema default.
 REQUIRED = {"mesh", "material.model", "material.young", "material.poisson", "integrator", "dt", "duration"}
 # Not printed: off unless given (floor, embedded, krylov_iterations), default
-# derived from other keys (mass, lumping, name), or not a setting ($schema).
-OFF = {"$schema", "name", "mass", "lumping", "floor", "embedded", "solver.krylov_iterations"}
+# derived from other keys (mass, lumping, name), not a setting ($schema), or an
+# alternative to the default mesh's box (mesh.tube: its "curved" default).
+OFF = {"$schema", "name", "mass", "lumping", "floor", "embedded", "solver.krylov_iterations", "mesh.tube"}
 
 
 def sub_schema(schema, path):

@@ -2,6 +2,8 @@
 // the key, with the valid choices), the built-in scenes parse, and a run writes
 // its frames, .pvd and stats.json while building only what the scene needs.
 #include "assembly/assembler.hpp"
+#include "embedded/embedded_quadrature.hpp"
+#include "embedded/finite_cell_quadrature.hpp"
 #include "mesh/tube_mesh.hpp"
 #include "io/vtu_writer.hpp"
 #include "scene/scene.hpp"
@@ -9,6 +11,7 @@
 #include "scene/scene_embedding.hpp"
 #include "scene/scene_runner.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -164,6 +167,23 @@ TEST(Scenes, HollowCylinderMesh) {
     EXPECT_NEAR(v, exact, (order == 1 ? 1.2e-2 : 1e-4) * exact) << order;
     EXPECT_FALSE(m.node_set("inner").empty());
     EXPECT_FALSE(m.node_set("top").empty());
+  }
+  // Straight-sided (curved = false): the P2 tube is the P1 tube's chords, so its
+  // volume is the P1 volume to rounding (1e-12: sums of ~200 element volumes),
+  // with the same nodes and node sets as the curved P2 tube (only moved).
+  for (const CellType cell : {CellType::Tetrahedron, CellType::Hexahedron}) {
+    const Mesh p1 = hollow_cylinder_mesh(0.5, 1.0, 2.0, 2, 24, 4, cell, 1);
+    const Mesh straight = hollow_cylinder_mesh(0.5, 1.0, 2.0, 2, 24, 4, cell, 2, false);
+    const Mesh curved = hollow_cylinder_mesh(0.5, 1.0, 2.0, 2, 24, 4, cell, 2);
+    auto volume = [](const Mesh& m) {
+      const DofMap dofs(m.num_nodes(), {});
+      return Assembler(m, dofs).element_volumes().sum();
+    };
+    EXPECT_NEAR(volume(straight), volume(p1), 1e-12 * exact);
+    EXPECT_GT(volume(curved) - volume(straight), 1e-3 * exact);  // the 24-gon's 1.1e-2 deficit, recovered
+    EXPECT_EQ(straight.num_nodes(), curved.num_nodes());
+    for (const char* set : {"inner", "outer", "bottom", "top", "boundary"})
+      EXPECT_EQ(straight.node_set(set).size(), curved.node_set(set).size()) << set;
   }
   // The seam is merged: no two nodes coincide (Hex20 has the most seam nodes).
   const Mesh hex = hollow_cylinder_mesh(0.5, 1.0, 2.0, 1, 8, 1, CellType::Hexahedron, 2);
@@ -454,6 +474,44 @@ TEST(Scenes, EmbeddedSurfaceFollowsTheBackground) {
   const SceneEmbedding raw(s, background);
   EXPECT_EQ(raw.stats()["quadrature"]["points_after"], raw.stats()["quadrature"]["points_before"]);
   EXPECT_EQ(raw.stats()["quadrature"]["points_before"], embedding.stats()["quadrature"]["points_before"]);
+}
+
+// What a stored finite-cell run is measured with (embedded_geometry: no rules)
+// must be what the run had: the same surface and the same active cells. The
+// grid is made 5 x 5 over [-0.7, 0.7]^2 so that it has cells the tube misses
+// (the centre, the corners), cut cells, and - with drop_fraction set between the
+// smallest and largest cut fraction - dropped cells; "active" is checked against
+// the rules themselves (null: uncut, empty: missed or dropped).
+TEST(Scenes, EmbeddedGeometryIsTheRunsSurfaceAndActiveCells) {
+  const SceneOverrides grid = {"mesh.box.min=[-0.7, -0.7, 0]", "mesh.box.max=[0.7, 0.7, 1]", "mesh.box.cells=[5, 5, 2]"};
+  const Scene probe = read_scene(kEmbeddedTiny, grid);
+  const Mesh background = build_scene_mesh(probe);
+  const std::vector<double> f =
+      finite_cell_volume_fractions(background, mesh_tetrahedra(build_embedded_mesh(probe)), FiniteCellOptions{});
+  double lo = 1.0, hi = 0.0;
+  for (double x : f)
+    if (x > 0.0 && x < 1.0) lo = std::min(lo, x), hi = std::max(hi, x);
+  ASSERT_LT(lo, hi) << "the grid should have cut cells of different fractions";
+  SceneOverrides overrides = grid;
+  overrides.push_back(fmt::format("embedded.drop_fraction={:.17g}", 0.5 * (lo + hi)));
+  const Scene s = read_scene(kEmbeddedTiny, overrides);
+  const SceneEmbedding embedding(s, background);
+  const EmbeddedGeometry g = embedded_geometry(s, background);
+  const ElementRules rules = embedding.element_rules();
+  int missed = 0, dropped = 0, kept = 0;
+  for (int e = 0; e < background.num_elements(); ++e) {
+    const bool integrates = !rules.stiffness[e] || rules.stiffness[e]->rule.size() > 0;
+    EXPECT_EQ(bool(g.active[e]), integrates) << "element " << e << ", volume fraction " << f[e];
+    EXPECT_EQ(bool(embedding.active_cells()[e]), integrates) << "element " << e;
+    missed += f[e] == 0.0;
+    dropped += f[e] > 0.0 && !integrates;
+    kept += integrates;
+  }
+  EXPECT_GT(missed, 0);
+  EXPECT_GT(dropped, 0);
+  EXPECT_GT(kept, 0);
+  EXPECT_EQ(g.surface.elements, embedding.surface().elements);
+  EXPECT_EQ(g.surface.nodes, embedding.surface().nodes);
 }
 
 // The tiny scene under gravity in a wider grid, [-1, 1]^2 x [0, 1] in 4 x 4 x 2

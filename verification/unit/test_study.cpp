@@ -243,6 +243,37 @@ TEST(StudyRun, TinyStudyWritesItsTable) {
   EXPECT_TRUE(j["complete"].get<bool>());
 }
 
+// The extended tier: a run marked "extended" is left out unless asked for (listed
+// in "left_out", not "pending": the study is complete without it); asked for, it
+// runs; once measured and stored it is reported by a study not asking for it.
+TEST(StudyRun, ExtendedRunsRunOnlyWhenAskedFor) {
+  const Scratch s;
+  Study study = read_study(std::string(HOFEM_TEST_DATA_DIR) + "/study_tiny.json");
+  study.runs[1].extended = true;  // p1-3
+  const nlohmann::json without = run_study(study, s.dir.string(), {.resume = true});
+  ASSERT_EQ(without["runs"].size(), 2u);
+  EXPECT_EQ(without["left_out"], nlohmann::json::array({"p1-3"}));
+  EXPECT_TRUE(without["complete"].get<bool>());
+  EXPECT_TRUE(without["pending"].empty());
+  EXPECT_FALSE(fs::exists(s.dir / "runs" / "p1-3" / "record.json"));
+  std::ifstream summary(s.dir / "summary.md");
+  const std::string summary_text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+  EXPECT_NE(summary_text.find("Left out"), std::string::npos);
+
+  const nlohmann::json with = run_study(study, s.dir.string(), {.resume = true, .extended = true});
+  ASSERT_EQ(with["runs"].size(), 3u);
+  EXPECT_EQ(with["runs"][1]["name"], "p1-3");
+  EXPECT_TRUE(with["runs"][1]["extended"].get<bool>());
+  EXPECT_FALSE(with["runs"][1]["stored"].get<bool>());
+  EXPECT_TRUE(with["left_out"].empty());
+
+  const nlohmann::json again = run_study(study, s.dir.string(), {.resume = true});
+  ASSERT_EQ(again["runs"].size(), 3u);
+  EXPECT_TRUE(again["runs"][1]["stored"].get<bool>());
+  EXPECT_EQ(again["runs"][1]["max_over_frames"], with["runs"][1]["max_over_frames"]);
+  EXPECT_TRUE(again["left_out"].empty());
+}
+
 // A resumable run that checkpoints (here after every step; a study's runs every
 // 120 s of stepping) writes its recorded states into the checkpoint directory
 // before the checkpoint itself, ends with its record and the checkpoint gone,
