@@ -331,10 +331,11 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
   // it has, "complete": false and the runs still to come).
   json runs = json::array();
   json left_out = json::array();  // extended runs neither asked for nor found measured
-  size_t next = 0;                // s.runs[next] is the next run to look at
-  auto study_json = [&](bool complete) {
+  // The files with the runs from s.runs[first_pending] on still to come.
+  auto study_json = [&](size_t first_pending) {
+    const bool complete = first_pending >= s.runs.size();
     json pending = json::array();
-    for (size_t k = next; k < s.runs.size(); ++k)
+    for (size_t k = first_pending; k < s.runs.size(); ++k)
       if (to_run(s.runs[k])) pending.push_back(s.runs[k].name);
     // The study's cost over all the sessions that made it: each run's own wall
     // time (stored runs keep theirs; a coarser level shared with a run counts once).
@@ -366,8 +367,8 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
   };
 
   // 2. Each run, then its errors against the reference.
-  for (; next < s.runs.size(); ++next) {
-    const StudyRun& r = s.runs[next];
+  for (size_t k = 0; k < s.runs.size(); ++k) {
+    const StudyRun& r = s.runs[k];
     json row;
     if (!to_run(r)) {
       // The extended tier, not asked for: reported only from a stored measurement.
@@ -401,15 +402,11 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
     }
     row["extended"] = r.extended;
     runs.push_back(row);
-    if (next + 1 < s.runs.size()) {
-      ++next;  // this run is done: not pending in the files written now
-      write_files(study_json(false));
-      --next;
-    }
+    if (k + 1 < s.runs.size()) write_files(study_json(k + 1));
   }
 
   // 3. The table, the cheapest runs, the files.
-  const json study = study_json(true);
+  const json study = study_json(s.runs.size());
   write_files(study);
   say(fmt::format("wrote {}", (out / "study.json").string()));
   return study;
