@@ -52,8 +52,6 @@ std::pair<Eigen::MatrixXd, Eigen::VectorXd> clipped_reference_rule(std::span<con
   return {std::move(xi), std::move(w)};
 }
 
-double reference_cell_volume(CellType cell) { return cell == CellType::Tetrahedron ? 1.0 / 6.0 : 8.0; }
-
 // The geometry's tetrahedra that may meet background cell e (bounding boxes).
 std::vector<int> cell_candidates(const Mesh& background, int e, const BoxBucketGrid& grid) {
   const Eigen::Matrix3Xd vertices =
@@ -67,6 +65,10 @@ void check_background(const Mesh& background) {
 }
 
 }  // namespace
+
+double reference_cell_volume(CellType cell) { return cell == CellType::Tetrahedron ? 1.0 / 6.0 : 8.0; }
+
+bool finite_cell_dropped(double f, double drop_fraction) { return f > 0.0 && f < 1.0 - 1e-12 && f < drop_fraction; }
 
 AffineFit fit_affine_cell(const Mesh& mesh, int e) {
   // Least-squares fit of X = origin + A xi over all nodes; the misfit says
@@ -248,12 +250,10 @@ std::vector<double> finite_cell_volume_fractions(const Mesh& background, std::sp
 
 std::vector<char> finite_cell_active(const std::vector<double>& volume_fraction, double drop_fraction) {
   std::vector<char> active(volume_fraction.size());
-  // stabilise_finite_cells: a cut cell (0 < f < 1 - 1e-12) under drop_fraction is dropped;
-  // a cell the geometry misses (f = 0) has an empty rule; every other cell integrates.
-  for (size_t e = 0; e < volume_fraction.size(); ++e) {
-    const double f = volume_fraction[e];
-    active[e] = f > 0.0 && (f >= drop_fraction || f >= 1.0 - 1e-12);
-  }
+  // A cell the geometry misses (f = 0) has an empty rule, a dropped one an emptied
+  // rule (stabilise_finite_cells); every other cell integrates.
+  for (size_t e = 0; e < volume_fraction.size(); ++e)
+    active[e] = volume_fraction[e] > 0.0 && !finite_cell_dropped(volume_fraction[e], drop_fraction);
   return active;
 }
 
@@ -285,7 +285,7 @@ StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& c
   for (int e = 0; e < ne; ++e) {
     const double f = cells.volume_fraction[e];
     if (f <= 0.0 || !cells.rules[e] || f >= 1.0 - 1e-12) continue;  // empty or uncut
-    if (f < options.drop_fraction) {
+    if (finite_cell_dropped(f, options.drop_fraction)) {
       cells.rules[e] = cells.mass_rules[e] = empty_rule(cell, p);
       fate[e] = Dropped;
       continue;

@@ -133,6 +133,11 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
 /// al. 2020 §6.3 at the seed's size has 32.5 M stiffness points, ~21 GB tabulated.
 std::vector<double> finite_cell_volume_fractions(const Mesh& background, std::span<const Tetrahedron> geometry,
                                                  const FiniteCellOptions& options = {});
+/// Volume of the reference cell: 1/6 (tetrahedron), 8 ([-1, 1]^3).
+double reference_cell_volume(CellType cell);
+/// Longva et al. 2020 §5.3: a cut cell (0 < f < 1) whose volume fraction f is
+/// below drop_fraction is dropped (stabilise_finite_cells, finite_cell_active).
+bool finite_cell_dropped(double volume_fraction, double drop_fraction);
 /// Per cell: it integrates something after stabilise_finite_cells with this
 /// drop_fraction (uncut, or cut and kept); false where the geometry misses it or
 /// it was dropped. The one definition of "active" (SceneEmbedding, the study's measurements).

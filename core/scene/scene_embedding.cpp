@@ -21,8 +21,7 @@ using Clock = std::chrono::steady_clock;
 
 // Volume of an affine background cell: |det A| times the reference cell's volume.
 double cell_volume(const Mesh& background, int e) {
-  const double reference = background.cell == CellType::Tetrahedron ? 1.0 / 6.0 : 8.0;
-  return std::abs(affine_cell(background, e).A.determinant()) * reference;
+  return std::abs(affine_cell(background, e).A.determinant()) * reference_cell_volume(background.cell);
 }
 
 }  // namespace
