@@ -304,7 +304,7 @@ void SceneRun::run_dynamic(std::vector<PrescribedMotion> motions) {
     for (const json& f : rec.value("frames", json::array())) frames.emplace_back(f.at(0).get<double>(), f.at(1).get<std::string>());
     deformation = VolumeRatioRecord::from_json(rec.value("deformation", json::object()));
     st["resumed_from_step"] = first;
-    if (options.on_resume) options.on_resume(rec.value("caller", json(nullptr)), first);
+    if (options.on_resume) options.on_resume(rec.value("caller", json(nullptr)), first, resumed->state.t);
   }
   const int steps = std::max(0, static_cast<int>(std::ceil((s.duration - sim.time()) / s.dynamics.dt - 1e-9)));
   // Mesh, finite-cell rules, mass matrix, ...: everything before the first step.

@@ -80,9 +80,10 @@ struct SceneRunOptions {
   bool resume = false;
   /// With checkpoints: called before each is committed, with its directory and
   /// step; what it returns is kept in the checkpoint and handed to on_resume
-  /// when a run continues from it (a study's recorded states).
+  /// when a run continues from it (a study's recorded states), with the
+  /// checkpoint's step and time.
   std::function<nlohmann::json(const std::string& dir, int step)> checkpoint_record;
-  std::function<void(const nlohmann::json& record, int step)> on_resume;
+  std::function<void(const nlohmann::json& record, int step, double t)> on_resume;
 };
 
 struct SceneRunResult {

@@ -134,7 +134,7 @@ void store_measure(const std::string& dir, const std::string& measure_key, const
 }
 
 RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times,
-                       bool resumable, int checkpoint_every_steps, const std::function<void(double t)>& on_step) {
+                       bool resumable, int checkpoint_every_steps, const StepCallback& on_step) {
   const std::string key = resumable && !out_dir.empty() ? record_key(scene, frame_times) : std::string();
   if (!key.empty())
     if (std::optional<RecordedRun> stored = stored_run(scene, out_dir, key, 1 + frame_times.size())) return *stored;
@@ -158,7 +158,7 @@ RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std
       run.states[0] = s.u;
       return;
     }
-    if (on_step) on_step(s.t);
+    if (on_step) on_step(s.t, false);
     for (size_t f = 0; f < frame_times.size(); ++f) {
       if (std::abs(s.t - frame_times[f]) < gap[f]) {
         gap[f] = std::abs(s.t - frame_times[f]);
@@ -175,7 +175,8 @@ RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std
     options.checkpoint_every_steps = checkpoint_every_steps;
     options.resume = true;
     options.checkpoint_record = [&](const std::string& dir, int) { return write_recorded(dir, run, steps); };
-    options.on_resume = [&](const json& files, int step) {
+    options.on_resume = [&](const json& files, int step, double t) {
+      if (on_step) on_step(t, true);
       if (!files.is_array()) return;
       read_recorded(options.checkpoint_dir, files, run, steps, step);
       for (size_t f = 0; f < frame_times.size(); ++f)

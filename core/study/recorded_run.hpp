@@ -40,14 +40,19 @@ struct RecordedRun {
 /// its state at t = 0 and at each time in `frame_times` (ascending; at most the
 /// scene's duration; a static scene's solution is at t = 1). A run that fails is returned with ok = false, its message
 /// and what it recorded.
+/// A run's progress: the time reached, and whether it was reached by resuming.
+using StepCallback = std::function<void(double t, bool resumed)>;
+
 RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times,
                        bool resumable = false, int checkpoint_every_steps = 0,
-                       const std::function<void(double t)>& on_step = {});
+                       const StepCallback& on_step = {});
 // resumable (needs out_dir): the finished run's record is stored in out_dir
 // (record.json and a state file per recorded time, keyed by the scene's
 // fingerprint and the times) and returned again without running when asked for
 // the same scene and times; a run that stops part-way continues from its last
-// on_step: called with the time after every step (a study's progress line).
+// on_step: called with the time after every step (resumed = false), and once
+// with the checkpoint's time when the run continues from one (resumed = true:
+// the steps before it are not this session's work; a study's ETA leaves them out).
 // checkpoint (out_dir/checkpoint, every 120 s of stepping, and every
 // checkpoint_every_steps steps when > 0: tests) with what it had
 // recorded. Stored results do not know which code made them beyond their

@@ -262,7 +262,10 @@ json run_study(const Study& s, const std::string& out_dir, const StudyRunOptions
     if (progress) progress->stage(fmt::format("running {} ({})", r.name, r.family), share(done_work));
     // Within a run, its share of the scene's time: the ETA moves with the steps.
     const double work = estimated_work(r.scene), end = std::max(r.scene.duration, 1e-300);
-    auto on_step = [&](double t) {
+    // A run resumed from a checkpoint: its steps before it were an earlier
+    // session's work, left out of the rate as stored runs are.
+    auto on_step = [&](double t, bool resumed) {
+      if (resumed) stored_work += std::min(t / end, 1.0) * work;
       if (progress)
         progress->update(fmt::format("running {} ({}): t = {:.4g} of {:.4g} s", r.name, r.family, t, end),
                          share(done_work + std::min(t / end, 1.0) * work));

@@ -295,6 +295,38 @@ TEST(StudyRun, CheckpointedRunRecordsItsStates) {
   for (size_t k = 0; k < a.states.size(); ++k) EXPECT_TRUE(b.states[k] == a.states[k]) << k;
 }
 
+// A run stopped part-way continues from its checkpoint: the progress callback
+// hears the checkpoint's time first (resumed, an earlier session's work) and
+// then only the steps after it, and the states equal an unbroken run's.
+TEST(StudyRun, ResumedRunReportsWhereItResumed) {
+  const Scratch s;
+  const Study study = read_study(std::string(HOFEM_TEST_DATA_DIR) + "/study_tiny.json");
+  const Scene& scene = study.runs.front().scene;
+  ASSERT_FALSE(scene.is_static);
+  const double dt = scene.dynamics.dt;
+  const int total = static_cast<int>(std::ceil(scene.duration / dt - 1e-9));
+  ASSERT_GE(total, 4);
+  const RecordedRun unbroken = record_run(scene, (s.dir / "unbroken").string(), study.frames, true, 1);
+  ASSERT_TRUE(unbroken.ok) << unbroken.message;
+  // Stop at the third step: the checkpoint of step 2 (every step) stays behind.
+  const std::string dir = (s.dir / "stopped").string();
+  const RecordedRun stopped = record_run(scene, dir, study.frames, true, 1, [&](double t, bool) {
+    if (t > 2.5 * dt) throw std::runtime_error("stopped");
+  });
+  ASSERT_FALSE(stopped.ok);
+  ASSERT_TRUE(fs::exists(fs::path(dir) / "checkpoint"));
+  std::vector<std::pair<double, bool>> heard;
+  const RecordedRun resumed =
+      record_run(scene, dir, study.frames, true, 1, [&](double t, bool r) { heard.emplace_back(t, r); });
+  ASSERT_TRUE(resumed.ok) << resumed.message;
+  ASSERT_EQ(heard.size(), static_cast<size_t>(total - 2 + 1));
+  EXPECT_TRUE(heard.front().second);
+  EXPECT_NEAR(heard.front().first, 2 * dt, 1e-12);  // t accumulated in two additions of dt
+  for (size_t k = 1; k < heard.size(); ++k) EXPECT_FALSE(heard[k].second) << k;
+  ASSERT_EQ(resumed.states.size(), unbroken.states.size());
+  for (size_t k = 0; k < resumed.states.size(); ++k) EXPECT_TRUE(resumed.states[k] == unbroken.states[k]) << k;
+}
+
 // A threshold the instrument cannot resolve stops the study.
 TEST(StudyRun, ThresholdBelowTheMeasuringFloorIsRefused) {
   const Scratch s;
