@@ -58,8 +58,10 @@ def ratio_row(R, cid, family, paper_ms, note, require_crossing=False, study="twi
     if lower and upper:
         raise KeyError(f"{family} / {over}: the bounds point both ways; add runs around the threshold")
     if require_crossing and (lower or upper):
-        raise KeyError(f"{cid}: {family} does not cross the threshold within its runs ({kind} {t:.4g} s), so hofem "
-                       "has only a bound, which the seed's value cannot contradict; its full-size ladder decides")
+        side = "above" if lower else "below"
+        raise KeyError(f"{cid}: {family} does not cross the threshold within its runs ({kind} {t:.4g} s per step at "
+                       f"its finest, {n:,} unknowns), so hofem's ratio is only bounded: {side} {measured:.3g}, against "
+                       f"the seed's {paper:.3g}")
     low, high = paper / 3, paper * 3
     # The interval of agreeing values: within a factor 3 of the seed's ratio and on
     # its side of 1. A bound agrees when the values it allows meet that interval.

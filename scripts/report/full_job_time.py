@@ -45,10 +45,11 @@ def study_time(study_file, result_file):
     for r in result["runs"]:
         if r.get("same_as"):
             continue
-        default += r.get("measure_seconds", 0.0)
-        if r["name"] in extended:
+        if r["name"] in extended:  # its stepping is in run_seconds, its measurement nowhere yet
             default -= r.get("total_seconds", 0.0)
             out["extended_seconds"] += run_seconds(r)
+        else:
+            default += r.get("measure_seconds", 0.0)
     out["default_seconds"] = default
     for r in spec["runs"]:
         if r["name"] not in measured:
