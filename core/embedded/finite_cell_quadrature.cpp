@@ -68,7 +68,11 @@ void check_background(const Mesh& background) {
 
 double reference_cell_volume(CellType cell) { return cell == CellType::Tetrahedron ? 1.0 / 6.0 : 8.0; }
 
-bool finite_cell_dropped(double f, double drop_fraction) { return f > 0.0 && f < 1.0 - 1e-12 && f < drop_fraction; }
+// The clipped rules integrate constants exactly, so an uncut cell's fraction is 1
+// to rounding (~1e-15 relative); 1e-12 leaves room and no real cut is that thin.
+bool finite_cell_cut(double f) { return f > 0.0 && f < 1.0 - 1e-12; }
+
+bool finite_cell_dropped(double f, double drop_fraction) { return finite_cell_cut(f) && f < drop_fraction; }
 
 AffineFit fit_affine_cell(const Mesh& mesh, int e) {
   // Least-squares fit of X = origin + A xi over all nodes; the misfit says
@@ -166,7 +170,7 @@ CellQuadrature finite_cell_quadrature(const Mesh& background, std::span<const Te
     const double fraction = ws.sum() / reference_volume;
     out.volume_fraction[e] = fraction;
     if (ws.size() == 0) out.rules[e] = out.mass_rules[e] = empty_rule(cell, p);
-    if (ws.size() == 0 || (options.standard_rule_inside && fraction >= 1.0 - 1e-12)) {  // uncut: standard rules (null)
+    if (ws.size() == 0 || (options.standard_rule_inside && !finite_cell_cut(fraction))) {  // uncut: standard rules (null)
       gen_seconds[e] = seconds_since(tc);
       continue;
     }
@@ -284,7 +288,7 @@ StabilisedCells stabilise_finite_cells(const Mesh& background, CellQuadrature& c
 #pragma omp parallel for schedule(dynamic, 4)
   for (int e = 0; e < ne; ++e) {
     const double f = cells.volume_fraction[e];
-    if (f <= 0.0 || !cells.rules[e] || f >= 1.0 - 1e-12) continue;  // empty or uncut
+    if (!finite_cell_cut(f) || !cells.rules[e]) continue;  // empty or uncut
     if (finite_cell_dropped(f, options.drop_fraction)) {
       cells.rules[e] = cells.mass_rules[e] = empty_rule(cell, p);
       fate[e] = Dropped;
@@ -324,7 +328,7 @@ std::vector<int> schwarz_block_elements(const CellQuadrature& cells, double thre
   for (size_t e = 0; e < cells.volume_fraction.size(); ++e) {
     const double f = cells.volume_fraction[e];
     const bool dropped = cells.rules[e] && cells.rules[e]->rule.size() == 0;
-    if (f > 0.0 && f < threshold && f < 1.0 - 1e-12 && !dropped) out.push_back(static_cast<int>(e));
+    if (finite_cell_cut(f) && f < threshold && !dropped) out.push_back(static_cast<int>(e));
   }
   return out;
 }

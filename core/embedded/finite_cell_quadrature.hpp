@@ -135,6 +135,8 @@ std::vector<double> finite_cell_volume_fractions(const Mesh& background, std::sp
                                                  const FiniteCellOptions& options = {});
 /// Volume of the reference cell: 1/6 (tetrahedron), 8 ([-1, 1]^3).
 double reference_cell_volume(CellType cell);
+/// A cut cell: 0 < f < 1, the volume fraction's 1 taken up to the clipped rule's rounding.
+bool finite_cell_cut(double volume_fraction);
 /// Longva et al. 2020 §5.3: a cut cell (0 < f < 1) whose volume fraction f is
 /// below drop_fraction is dropped (stabilise_finite_cells, finite_cell_active).
 bool finite_cell_dropped(double volume_fraction, double drop_fraction);

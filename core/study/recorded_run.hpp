@@ -35,14 +35,14 @@ struct RecordedRun {
   bool stored = false;
 };
 
+/// A run's progress: the time reached, and whether it was reached by resuming.
+using StepCallback = std::function<void(double t, bool resumed)>;
+
 /// Runs the scene without frames into `out_dir` (stats.json only; empty: no
 /// files) and records
 /// its state at t = 0 and at each time in `frame_times` (ascending; at most the
 /// scene's duration; a static scene's solution is at t = 1). A run that fails is returned with ok = false, its message
 /// and what it recorded.
-/// A run's progress: the time reached, and whether it was reached by resuming.
-using StepCallback = std::function<void(double t, bool resumed)>;
-
 RecordedRun record_run(const Scene& scene, const std::string& out_dir, const std::vector<double>& frame_times,
                        bool resumable = false, int checkpoint_every_steps = 0,
                        const StepCallback& on_step = {});
