@@ -6,7 +6,8 @@
 // Nothing here calls core/material: the laws, the polar decomposition of the
 // corotated model and the manufactured field's derivatives are all computed
 // here, in long double (64-bit significand, ~11 bits beyond double), so the
-// reference's own round-off stays below the double results it judges.
+// reference's own round-off stays below the double results it judges; the MMS
+// body force in double (see mms_body_force).
 #include <Eigen/Core>
 
 #include <string>
@@ -31,13 +32,10 @@ class SymbolicMaterial {
 
   /// The body force that puts the MMS cube's manufactured displacement of scale
   /// s in equilibrium: f_i = -Div P = -sum_{j,k,l} dP_ij/dF_kl d^2u_k/dX_l dX_j,
-  /// from this law's tangent and sympy's derivatives of the field.
+  /// from this law's tangent and sympy's derivatives of the field; in double.
   Eigen::Vector3d mms_body_force(const Eigen::Vector3d& X, double s) const;
 
  private:
-  using Mat3L = Eigen::Matrix<long double, 3, 3>;
-  long double energy_stress(const Mat3L& F, Mat3L* P) const;
-  Eigen::Matrix<long double, 9, 9> tangent_l(const Mat3L& F) const;
 
   std::string name_;
   long double mu_, lambda_;
