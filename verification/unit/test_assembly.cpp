@@ -106,6 +106,34 @@ TEST(StaticElasticity, LoadSteppingRecoversWhereAFullStepInverts) {
   }
 }
 
+// A nodal external load adds to the integrated body force: linear elasticity
+// superposes, u(b + g) = u(b) + u(g). Three CHOLMOD solves of a linear problem
+// (one Newton step each, residual at round-off); measured |u(b+g) - u(b) - u(g)|
+// / |u(b+g)| ~1e-15, so 1e-10 is round-off with a wide margin, while a load that
+// replaced the body force instead of adding to it misses u(b): O(1) here (the
+// two loads are of one size).
+TEST(StaticElasticity, ExternalLoadAddsToTheBodyForce) {
+  const Mesh m = box_mesh(unit_cube(2), CellType::Tetrahedron, 2);
+  const auto mat = make_material("linear", LameParameters::from_young_poisson(1.0, 0.3));
+  const VectorField gravity = [](const Eigen::Vector3d&) { return Eigen::Vector3d(0.0, 0.0, -0.1); };
+  Eigen::VectorXd pull = Eigen::VectorXd::Zero(3 * m.num_nodes());
+  for (int n : m.node_set("xmax")) pull[3 * n] = 0.01;
+  auto solve = [&](const VectorField& body, const Eigen::VectorXd& nodal) {
+    StaticOptions opt;
+    opt.solver = SolverSpec::parse("cholmod");
+    opt.external_load = nodal;
+    StaticElasticity p(m, *mat, {{m.node_set("xmin"), nullptr}}, body, opt);
+    const StaticReport r = p.solve();
+    EXPECT_TRUE(r.converged) << r.message;
+    return Eigen::VectorXd(p.displacement());
+  };
+  const Eigen::VectorXd both = solve(gravity, pull), body = solve(gravity, Eigen::VectorXd()),
+                        nodal = solve(nullptr, pull);
+  ASSERT_GT(body.norm(), 0.1 * both.norm());  // both loads matter, or the check proves nothing
+  ASSERT_GT(nodal.norm(), 0.1 * both.norm());
+  EXPECT_LE((both - body - nodal).norm() / both.norm(), 1e-10);
+}
+
 TEST(StaticElasticity, RejectsInvertedInputMeshWithTheElementIndex) {
   Mesh m = box_mesh(unit_cube(2), CellType::Tetrahedron, 1);
   std::swap(m.elements(1, 4), m.elements(2, 4));
