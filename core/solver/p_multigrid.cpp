@@ -2,6 +2,7 @@
 
 #include "linalg/boomeramg.hpp"
 
+#include "linalg/chebyshev_recurrence.hpp"
 #include "linalg/cholmod_solver.hpp"
 
 #include <Eigen/Cholesky>
@@ -205,21 +206,18 @@ void PMultigridPreconditioner::smoother_inverse(const Level& level, const Eigen:
 // D^-1: the same recurrence, each step a product, a pass of S and the updates.
 void PMultigridPreconditioner::chebyshev_blocks(const Level& level, Eigen::VectorXd& z, bool final_residual) const {
   const BlockSparseMatrix<float>& A = level.smooth;
-  const double upper = level.lambda_max, lower = upper / options_.smoothing_range;
-  const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower), sigma = theta / delta;
-  double rho = 1.0 / sigma;
+  ChebyshevRecurrence cheb(level.lambda_max / options_.smoothing_range, level.lambda_max);
   smoother_inverse(level, level.res, level.w);
-  level.d = level.w / theta;
+  level.d = level.w / cheb.theta();
   z += level.d;
   for (int k = 1; k < options_.chebyshev_degree; ++k) {
-    const double rho_next = 1.0 / (2.0 * sigma - rho), c_old = rho_next * rho, c_res = 2.0 * rho_next / delta;
+    const ChebyshevRecurrence::Step c = cheb.next();
     A.multiply(level.d, level.w);
     level.res -= level.w;
     smoother_inverse(level, level.res, level.w);
-    level.d_next = c_old * level.d + c_res * level.w;
+    level.d_next = c.c_old * level.d + c.c_res * level.w;
     z += level.d_next;
     level.d.swap(level.d_next);
-    rho = rho_next;
   }
   if (final_residual) {
     A.multiply(level.d, level.w);
@@ -237,9 +235,8 @@ void PMultigridPreconditioner::chebyshev(const Level& level, Eigen::VectorXd& z,
     return;
   }
   const BlockSparseMatrix<float>& A = level.smooth;
-  const double upper = level.lambda_max, lower = upper / options_.smoothing_range;
-  const double theta = 0.5 * (upper + lower), delta = 0.5 * (upper - lower), sigma = theta / delta;
-  double rho = 1.0 / sigma;
+  ChebyshevRecurrence cheb(level.lambda_max / options_.smoothing_range, level.lambda_max);
+  const double theta = cheb.theta();
   const Eigen::Index nb = A.block_rows();
   double* d = level.d.data();
   double* dn = level.d_next.data();
@@ -253,7 +250,8 @@ void PMultigridPreconditioner::chebyshev(const Level& level, Eigen::VectorXd& z,
     Eigen::Map<Eigen::Vector3d>(x + 3 * b) += step;
   }
   for (int k = 1; k < options_.chebyshev_degree; ++k) {
-    const double rho_next = 1.0 / (2.0 * sigma - rho), c_old = rho_next * rho, c_res = 2.0 * rho_next / delta;
+    const ChebyshevRecurrence::Step c = cheb.next();
+    const double c_old = c.c_old, c_res = c.c_res;
 #pragma omp parallel for schedule(static) if (A.parallel())
     for (Eigen::Index b = 0; b < nb; ++b) {
       Eigen::Map<Eigen::Vector3d> rb(res + 3 * b);
@@ -263,7 +261,6 @@ void PMultigridPreconditioner::chebyshev(const Level& level, Eigen::VectorXd& z,
       Eigen::Map<Eigen::Vector3d>(x + 3 * b) += step;
     }
     std::swap(d, dn);
-    rho = rho_next;
   }
   if (final_residual) {
 #pragma omp parallel for schedule(static) if (A.parallel())
