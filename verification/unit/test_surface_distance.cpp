@@ -217,6 +217,30 @@ TEST(SurfaceDistance, ParallelSquaresAreAtTheirOffset) {
     }
 }
 
+TEST(SurfaceDistance, SymmetricMeasureSeesTheLargerSurfacesExcess) {
+  // The unit square against [0, 2]^2 in the same plane: every point of the small
+  // square lies on the large one (a to b: 0), while the large square's points lie
+  // up to sqrt(2) from the small one. b to a in closed form: dist^2 is (x - 1)^2,
+  // (y - 1)^2 or their sum on the three uncovered unit squares (grid lines at
+  // x, y = 1), integrating to 1/3 + 1/3 + 2/3 over area 4, so RMS = 1/sqrt(3);
+  // the samples are exact for these quadratics on each triangle up to rounding
+  // (~1e-16; 1e-13 leaves room for the sums over 256 triangles). A one-sided
+  // measure would report 0 for (small, large) and 1/sqrt(3) only the other way round.
+  const TriangleSurface small = square(4, 0.0), large = square(8, 0.0, 2.0 * Eigen::Matrix3d::Identity());
+  for (const bool swapped : {false, true}) {
+    SCOPED_TRACE(::testing::Message() << "swapped = " << swapped);
+    const SurfaceDistance d = swapped ? surface_distance(large, small) : surface_distance(small, large);
+    const DirectedDistance& on = swapped ? d.b_to_a : d.a_to_b;  // small -> large
+    const DirectedDistance& off = swapped ? d.a_to_b : d.b_to_a;  // large -> small
+    EXPECT_LE(on.rms, 1e-13);
+    EXPECT_LE(on.max, 1e-13);
+    EXPECT_NEAR(off.rms, 1.0 / std::sqrt(3.0), 1e-13);
+    EXPECT_NEAR(off.max, std::sqrt(2.0), 1e-13);
+    EXPECT_NEAR(d.rms(), 1.0 / std::sqrt(3.0), 1e-13);
+    EXPECT_NEAR(d.max(), std::sqrt(2.0), 1e-13);
+  }
+}
+
 TEST(SurfaceDistance, ScaledSphereIsWithinTheChordBound) {
   // Both surfaces are inscribed polyhedra: A's points lie at radii [1 - s, 1] and
   // B's at [(1 + d)(1 - s), 1 + d], s the largest sagitta 1 - sqrt(1 - rho^2) over
