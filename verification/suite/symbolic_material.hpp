@@ -36,7 +36,6 @@ class SymbolicMaterial {
   Eigen::Vector3d mms_body_force(const Eigen::Vector3d& X, double s) const;
 
  private:
-
   std::string name_;
   long double mu_, lambda_;
 };
